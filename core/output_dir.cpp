@@ -1,0 +1,50 @@
+#include "core/output_dir.h"
+
+#include "core/errors.h"
+
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace tissuemesh {
+
+OutputDir::OutputDir(const fs::path& target) : target_(target) {
+  std::error_code ec;
+  if (fs::exists(target_, ec) && !fs::is_directory(target_, ec))
+    throw OutputError(target_.string() + ": output path exists and is not a directory");
+  if (!fs::exists(target_, ec)) {
+    fs::create_directories(target_, ec);
+    if (ec) throw OutputError(target_.string() + ": cannot create output directory: " + ec.message());
+    created_target_ = true;
+  }
+  if (::access(target_.c_str(), W_OK) != 0)
+    throw OutputError(target_.string() + ": output directory is not writable");
+  // Staging inside the target keeps the final rename on one file system.
+  staging_ = target_ / (".tissuemesh-staging-" + std::to_string(::getpid()));
+  fs::create_directories(staging_, ec);
+  if (ec) throw OutputError(target_.string() + ": cannot write into output directory: " + ec.message());
+}
+
+OutputDir::~OutputDir() {
+  std::error_code ec;
+  fs::remove_all(staging_, ec);
+  // A folder we created for a run that failed would be a partial output too.
+  if (!committed_ && created_target_ && fs::is_empty(target_, ec)) fs::remove(target_, ec);
+}
+
+fs::path OutputDir::stage(const std::string& name) {
+  names_.push_back(name);
+  return staging_ / name;
+}
+
+void OutputDir::commit() {
+  for (const auto& name : names_) {
+    std::error_code ec;
+    if (!fs::exists(staging_ / name)) continue;
+    fs::rename(staging_ / name, target_ / name, ec);
+    if (ec) throw OutputError((target_ / name).string() + ": cannot move output into place: " + ec.message());
+  }
+  committed_ = true;
+}
+
+}  // namespace tissuemesh
