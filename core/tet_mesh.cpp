@@ -14,6 +14,12 @@ void TetMesh::validate(const std::string& what) const {
     err << what << ": " << tets.size() << " tets but " << tissue_ids.size() << " tissue ids";
     throw InputError(err.str());
   }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].allFinite()) {
+      err << what << ": node " << i << " has a non-finite coordinate";
+      throw InputError(err.str());
+    }
+  }
   for (std::size_t t = 0; t < tets.size(); ++t) {
     for (int v : tets[t]) {
       if (v < 0 || v >= n) {

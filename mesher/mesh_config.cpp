@@ -1,0 +1,53 @@
+#include "mesher/mesh_config.h"
+
+#include "core/errors.h"
+
+namespace tissuemesh {
+
+MeshConfig MeshConfig::parse(const YAML::Node& root, const std::string& source) {
+  MeshConfig c;
+  c.source = source;
+  YamlMap top(root, "", source);
+  c.pipeline = top.text("pipeline", c.pipeline);
+  if (c.pipeline != "direct") {
+    throw InputError(top.where("pipeline") + ": unknown pipeline '" + c.pipeline +
+                     "' (supported: direct; 'surface' is not implemented yet)");
+  }
+  c.tissues = TissueTable::from_config(top);
+  YamlMap direct = top.map("direct");
+  c.direct = DirectMeshParams::from_yaml(direct);
+  YamlMap phantom = top.map("phantom");
+  c.phantom = parse_phantom_params(phantom);
+  phantom.finish();
+  top.finish();
+  return c;
+}
+
+MeshConfig MeshConfig::load(const std::string& path) { return parse(load_yaml_file(path), path); }
+
+MeshConfig MeshConfig::phantom_default() {
+  MeshConfig c;
+  c.source = "<built-in phantom config>";
+  c.tissues = TissueTable({{"fat", 0, {kFat}},
+                           {"fgt", 0, {kFgt}},
+                           {"tumor", 0, {kTumor}},
+                           {"skin", 0, {kSkin}},
+                           {"muscle", 0, {kMuscle}}},
+                          {kAir, kThorax}, c.source);
+  return c;
+}
+
+std::string MeshConfig::to_yaml() const {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  out << YAML::Key << "pipeline" << YAML::Value << pipeline;
+  tissues.to_yaml(out);
+  out << YAML::Key << "direct" << YAML::Value;
+  direct.to_yaml(out);
+  out << YAML::Key << "phantom" << YAML::Value;
+  phantom_params_to_yaml(phantom, out);
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace tissuemesh

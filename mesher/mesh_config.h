@@ -1,0 +1,39 @@
+// MeshConfig: the schema of a meshing config file (YAML), owned by code.
+//
+//   pipeline: direct            # 'direct' (CGAL from the image). 'surface' arrives with issue #5.
+//   tissues: [...]              # see core/tissue_table.h
+//   ignore_labels: [0]
+//   direct: {...}               # see mesher/direct_mesh_params.h
+//   phantom: {...}              # optional: the phantom `tissuemesh demo` generates (phantom.h)
+//
+// Unknown keys anywhere are errors naming the file and key path. `to_yaml()` prints the effective
+// config (every key with its value, defaults filled in) for --print-config and the run record.
+#pragma once
+
+#include "core/tissue_table.h"
+#include "mesher/direct_mesh_params.h"
+#include "mesher/phantom.h"
+
+#include <string>
+
+namespace tissuemesh {
+
+struct MeshConfig {
+  std::string source = "<built-in defaults>";  ///< file it came from (for messages)
+  std::string pipeline = "direct";
+  TissueTable tissues;
+  DirectMeshParams direct;
+  PhantomParams phantom;
+
+  /// Loads and validates a config file; throws InputError naming the file and key.
+  static MeshConfig load(const std::string& path);
+  /// Same from a parsed document; `source` names it in messages.
+  static MeshConfig parse(const YAML::Node& root, const std::string& source);
+  /// The config `tissuemesh demo` uses when given none; identical to configs/phantom.yaml
+  /// (a test keeps them in sync).
+  static MeshConfig phantom_default();
+
+  std::string to_yaml() const;
+};
+
+}  // namespace tissuemesh
