@@ -23,4 +23,9 @@ constexpr double kAngleDeg = 1e-9;
 /// phantom (3%) is tighter because its tissues are many voxels across.
 constexpr double kSmallImageVolumeRel = 0.05;
 
+/// Volume of a tissue bounded by flat, axis-aligned interfaces and the image box: the surface is
+/// exact up to CGAL's boundary search (relative error bound 1e-6 of the image diagonal), so only
+/// round-off remains; 1e-6 relative.
+constexpr double kFlatInterfaceVolumeRel = 1e-6;
+
 }  // namespace tissuemesh::test

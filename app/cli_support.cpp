@@ -1,0 +1,75 @@
+#include "app/cli_support.h"
+
+#include "core/errors.h"
+#include "core/resources.h"
+#include "mesher/direct_mesher.h"
+
+#include <cstdio>
+#include <iostream>
+
+namespace tissuemesh::app {
+
+int run_guarded(const std::string& command, const std::function<void()>& body) {
+  const std::string prefix = "tissuemesh " + command + ": error: ";
+  try {
+    body();
+    return 0;
+  } catch (const InputError& e) {
+    std::cerr << prefix << e.what() << "\n";
+    return 2;
+  } catch (const OutputError& e) {
+    std::cerr << prefix << e.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << prefix << "out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << prefix << "internal failure: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+Progress console_progress() {
+  return Progress([](Progress::Event event, const std::string& stage, const std::string& text, double s) {
+    char buf[64];
+    switch (event) {
+      case Progress::Event::Begin:
+        std::cout << "> " << stage << " ..." << std::endl;
+        break;
+      case Progress::Event::Note:
+        std::snprintf(buf, sizeof buf, "%8.2f s", s);
+        std::cout << "  " << buf << "  " << text << std::endl;
+        break;
+      case Progress::Event::End:
+        std::snprintf(buf, sizeof buf, "%.2f s", s);
+        std::cout << "  " << stage << " done in " << buf << std::endl;
+        break;
+    }
+  });
+}
+
+nlohmann::json run_record_common(const Progress& progress, const std::string& cmd) {
+  nlohmann::json j;
+  j["command_line"] = cmd;
+  auto versions = library_versions();
+  versions["CGAL"] = cgal_version();
+  j["versions"] = versions;
+  nlohmann::json timings = nlohmann::json::array();
+  double total = 0.0;
+  for (const auto& t : progress.timings()) {
+    timings.push_back({{"stage", t.name}, {"seconds", t.seconds}});
+    total += t.seconds;
+  }
+  j["timings"] = timings;
+  j["total_seconds"] = total;
+  j["peak_memory_mib"] = peak_memory_mib();
+  return j;
+}
+
+std::string command_line(int argc, char** argv) {
+  std::string s;
+  for (int i = 0; i < argc; ++i) s += (i ? " " : "") + std::string(argv[i]);
+  return s;
+}
+
+}  // namespace tissuemesh::app

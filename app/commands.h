@@ -1,0 +1,20 @@
+// One function per subcommand; each adds itself to the CLI and, when chosen, stores its exit code.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace tissuemesh::app {
+
+struct Invocation {
+  std::string command_line;  ///< as typed, for run records
+  int exit_code = 0;
+};
+
+void add_demo_command(CLI::App& cli, Invocation& run);
+void add_phantom_command(CLI::App& cli, Invocation& run);
+void add_mesh_command(CLI::App& cli, Invocation& run);
+void add_info_command(CLI::App& cli, Invocation& run);
+
+}  // namespace tissuemesh::app

@@ -1,0 +1,42 @@
+#include "app/mesh_outputs.h"
+
+#include "app/cli_support.h"
+#include "core/errors.h"
+#include "core/vtu_io.h"
+#include "mesher/mesh_job.h"
+#include "mesher/mesh_report.h"
+
+#include <fstream>
+#include <iostream>
+
+namespace tissuemesh::app {
+
+namespace {
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream f(path);
+  f << text;
+  if (!f) throw OutputError(path.string() + ": cannot write");
+}
+}  // namespace
+
+void mesh_into(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
+               const nlohmann::json& inputs, const std::string& cmd, Progress& progress, OutputDir& out) {
+  const MeshJobResult result = run_mesh_job(labels, image_name, config, progress);
+  {
+    auto stage = progress.stage("write mesh.vtu");
+    write_vtu(result.meshing.mesh, out.stage("mesh.vtu").string());
+  }
+  const std::string text = mesh_job_text(result);
+  nlohmann::json record = run_record_common(progress, cmd);
+  record["inputs"] = inputs;
+  record["config"] = {{"source", config.source}, {"effective_yaml", config.to_yaml()}};
+  record["image"] = image_summary_json(labels);
+  record["result"] = mesh_job_json(result);
+  record["outputs"] = {{"mesh", out.final_path("mesh.vtu").string()},
+                       {"report_text", out.final_path("report.txt").string()}};
+  write_text(out.stage("report.json"), record.dump(2) + "\n");
+  write_text(out.stage("report.txt"), text);
+  std::cout << "\n" << text;
+}
+
+}  // namespace tissuemesh::app

@@ -1,0 +1,22 @@
+// Meshing a label image into an output folder: shared by `mesh` and `demo`.
+#pragma once
+
+#include "core/label_image.h"
+#include "core/output_dir.h"
+#include "core/progress.h"
+#include "mesher/mesh_config.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace tissuemesh::app {
+
+/// Meshes `labels` with `config`, stages DIR/mesh.vtu, DIR/report.json (the run record: inputs,
+/// effective config, versions, timings, counts, quality) and DIR/report.txt, and prints the
+/// report table. `inputs` is merged into the record's "inputs". Does not commit `out`.
+void mesh_into(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
+               const nlohmann::json& inputs, const std::string& command_line, Progress& progress,
+               OutputDir& out);
+
+}  // namespace tissuemesh::app
