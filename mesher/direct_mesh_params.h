@@ -39,7 +39,7 @@ struct DirectMeshParams {
   /// run (measured), and the same input must give the same output files.
   bool perturb = false;
   bool exude = true;                    ///< sliver exudation
-  double sliver_bound_deg = 20.0;       ///< dihedral angle the perturber / exuder aim for, degrees
+  double sliver_bound_deg = 15.0;       ///< dihedral angle the perturber / exuder aim for, degrees
   double sliver_time_limit_s = 20.0;    ///< time limit of each of perturb / exude, s
   /// Remove tets with a dihedral below this (degrees) that have >= 2 faces on the outer boundary
   /// (flat caps no vertex move can repair; boundary_slivers.h). 0 = keep them.

@@ -256,6 +256,11 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
                     p::cell_radius_edge_ratio = params.cell_radius_edge_ratio, p::cell_size = cell_field);
 
   C3t3 c3t3;
+  auto note_time_limit = [&](const std::string& what, CGAL::Mesh_optimization_return_code code) {
+    if (code == CGAL::TIME_LIMIT_REACHED)
+      result.warnings.push_back(what + " stopped at its time limit: the mesh depends on machine speed and "
+                                       "may differ between runs (raise the limit or lower sliver_bound_deg)");
+  };
   {
     auto stage = progress.stage("seed components");
     CGAL::Mesh_3::internal::init_c3t3_with_features(c3t3, domain, criteria);
@@ -269,21 +274,21 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
   }
   if (params.lloyd) {
     auto stage = progress.stage("Lloyd");
-    CGAL::lloyd_optimize_mesh_3(c3t3, domain, p::time_limit = params.optimise_time_limit_s);
+    note_time_limit("Lloyd", CGAL::lloyd_optimize_mesh_3(c3t3, domain, p::time_limit = params.optimise_time_limit_s));
   }
   if (params.odt) {
     auto stage = progress.stage("ODT");
-    CGAL::odt_optimize_mesh_3(c3t3, domain, p::time_limit = params.optimise_time_limit_s);
+    note_time_limit("ODT", CGAL::odt_optimize_mesh_3(c3t3, domain, p::time_limit = params.optimise_time_limit_s));
   }
   if (params.perturb) {
     auto stage = progress.stage("perturb slivers");
-    CGAL::perturb_mesh_3(c3t3, domain, p::time_limit = params.sliver_time_limit_s,
-                         p::sliver_bound = params.sliver_bound_deg);
+    note_time_limit("perturbation", CGAL::perturb_mesh_3(c3t3, domain, p::time_limit = params.sliver_time_limit_s,
+                                                         p::sliver_bound = params.sliver_bound_deg));
   }
   if (params.exude) {
     auto stage = progress.stage("exude slivers");
-    CGAL::exude_mesh_3(c3t3, p::time_limit = params.sliver_time_limit_s,
-                       p::sliver_bound = params.sliver_bound_deg);
+    note_time_limit("exudation", CGAL::exude_mesh_3(c3t3, p::time_limit = params.sliver_time_limit_s,
+                                                    p::sliver_bound = params.sliver_bound_deg));
   }
 
   auto stage = progress.stage("extract mesh");

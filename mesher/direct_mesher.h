@@ -37,6 +37,9 @@ struct DirectMeshResult {
   std::size_t initial_points = 0;        ///< surface points seeded before refinement
   std::vector<MissedComponent> missed;   ///< components not represented (reported, never hidden)
   BoundarySliverRemoval boundary_slivers;  ///< flat caps removed from the outer boundary
+  /// Things the user must know, e.g. an optimiser stopped by its time limit (its result then
+  /// depends on machine speed, so repeated runs may differ).
+  std::vector<std::string> warnings;
 };
 
 /// `ids`: tissue ids 0..N (0 = outside) as made by TissueTable::to_tissue_ids; `tissue_names[i]`

@@ -85,6 +85,7 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
   for (const auto& m : r.meshing.missed)
     missed.push_back({{"tissue", m.tissue}, {"voxels", m.voxels}, {"volume_mm3", m.volume_mm3},
                       {"centroid_mm", vec(m.centroid_mm)}});
+  j["warnings"] = r.meshing.warnings;
   j["image_components"] = r.meshing.image_components;
   j["initial_surface_points"] = r.meshing.initial_points;
   j["components_not_meshed"] = missed;
@@ -103,6 +104,7 @@ std::string mesh_job_text(const MeshJobResult& r) {
     << r.meshing.missed.size() << "\n";
   s << "boundary slivers removed: " << r.meshing.boundary_slivers.tets_removed << " tets, "
     << fmt("%.4f mm^3\n", r.meshing.boundary_slivers.volume_removed_mm3);
+  for (const auto& w : r.meshing.warnings) s << "WARNING: " << w << "\n";
   for (const auto& m : r.meshing.missed)
     s << "  " << m.tissue << ": " << m.voxels << " voxels, " << fmt("%.2f mm^3 at (%.1f, ", m.volume_mm3, m.centroid_mm[0])
       << fmt("%.1f, %.1f) mm LPS\n", m.centroid_mm[1], m.centroid_mm[2]);

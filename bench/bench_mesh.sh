@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Benchmark of `tissuemesh mesh` on the default phantom at three resolutions: median wall time and
+# peak memory over N runs (default 5). Usage: bench/bench_mesh.sh [runs] (after scripts/build.sh).
+# Prints a Markdown table for bench/RESULTS.md. Needs python3 (reads report.json).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+RUNS=${1:-5}
+EXE=./build/app/tissuemesh
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+$EXE phantom --out "$WORK/phantom.nii.gz" > /dev/null
+
+median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+
+echo "| config | tets | nodes | wall time median [s] (min-max) | peak memory median [MiB] | min dihedral [deg] | tets < 10 deg |"
+echo "|---|---|---|---|---|---|---|"
+for cfg in bench/configs/coarse.yaml configs/phantom.yaml bench/configs/fine.yaml; do
+  : > "$WORK/times"; : > "$WORK/mem"
+  for i in $(seq "$RUNS"); do
+    rm -rf "$WORK/out"
+    start=$(date +%s.%N)
+    $EXE mesh "$WORK/phantom.nii.gz" -c "$cfg" -o "$WORK/out" > /dev/null
+    end=$(date +%s.%N)
+    awk -v a="$start" -v b="$end" "BEGIN {print b - a}" >> "$WORK/times"
+    python3 -c "import json,sys; print(json.load(open('$WORK/out/report.json'))['peak_memory_mib'])" >> "$WORK/mem"
+  done
+  read -r tets nodes mind below < <(python3 -c "
+import json; r=json.load(open('$WORK/out/report.json'))['result']; t=r['quality']['total']
+print(r['tets'], r['nodes'], round(t['min_dihedral_deg'],2), t['tets_below_10deg'])")
+  t_med=$(median < "$WORK/times"); t_min=$(sort -g "$WORK/times" | head -1); t_max=$(sort -g "$WORK/times" | tail -1)
+  m_med=$(median < "$WORK/mem")
+  printf "| %s | %s | %s | %.2f (%.2f-%.2f) | %.0f | %s | %s (%.2f%%) |\n" "$cfg" "$tets" "$nodes" "$t_med" "$t_min" "$t_max" \
+    "$m_med" "$mind" "$below" "$(awk -v b="$below" -v t="$tets" "BEGIN {print 100 * b / t}")"
+done
