@@ -14,7 +14,7 @@ median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a
 
 echo "| config | tets | nodes | wall time median [s] (min-max) | peak memory median [MiB] | min dihedral [deg] | tets < 10 deg |"
 echo "|---|---|---|---|---|---|---|"
-for cfg in bench/configs/coarse.yaml configs/phantom.yaml bench/configs/fine.yaml; do
+for cfg in bench/configs/coarse-3tissues.yaml configs/phantom.yaml bench/configs/fine.yaml; do
   : > "$WORK/times"; : > "$WORK/mem"
   for i in $(seq "$RUNS"); do
     rm -rf "$WORK/out"
