@@ -36,4 +36,28 @@ void TetMesh::validate(const std::string& what) const {
   }
 }
 
+void keep_tets(TetMesh& mesh, const std::vector<char>& keep) {
+  std::vector<std::array<int, 4>> tets;
+  std::vector<int> ids;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+    if (keep[t]) {
+      tets.push_back(mesh.tets[t]);
+      ids.push_back(mesh.tissue_ids[t]);
+    }
+  std::vector<int> new_index(mesh.points.size(), -1);
+  for (const auto& t : tets)
+    for (int v : t) new_index[v] = 0;
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    if (new_index[v] == 0) {
+      new_index[v] = static_cast<int>(points.size());
+      points.push_back(mesh.points[v]);
+    }
+  for (auto& t : tets)
+    for (int& v : t) v = new_index[v];
+  mesh.points.swap(points);
+  mesh.tets.swap(tets);
+  mesh.tissue_ids.swap(ids);
+}
+
 }  // namespace tissuemesh

@@ -27,6 +27,10 @@ struct TetMesh {
   void validate(const std::string& what) const;
 };
 
+/// Keeps the tets t with keep[t] != 0 (in order) and drops the nodes no kept tet uses, keeping
+/// the order of the remaining nodes. keep.size() must equal mesh.tets.size().
+void keep_tets(TetMesh& mesh, const std::vector<char>& keep);
+
 /// Signed volume of the tetrahedron (a,b,c,d) in mm^3: positive when positively oriented.
 inline double signed_tet_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                 const Eigen::Vector3d& c, const Eigen::Vector3d& d) {

@@ -1,24 +1,18 @@
 #include "mesher/boundary_slivers.h"
 
+#include "mesher/face_key.h"
 #include "mesher/mesh_quality.h"
 
 #include <algorithm>
 #include <array>
-#include <map>
+#include <unordered_map>
 
 namespace tissuemesh {
 
 namespace {
 
-using Face = std::array<int, 3>;
-
-Face face_of(const std::array<int, 4>& t, int skip) {
-  Face f{};
-  int n = 0;
-  for (int q = 0; q < 4; ++q)
-    if (q != skip) f[n++] = t[q];
-  std::sort(f.begin(), f.end());
-  return f;
+std::uint64_t face_of(const std::array<int, 4>& t, int skip) {
+  return face_key(t[(skip + 1) % 4], t[(skip + 2) % 4], t[(skip + 3) % 4]);
 }
 
 double min_dihedral(const TetMesh& m, const std::array<int, 4>& t) {
@@ -31,7 +25,8 @@ double min_dihedral(const TetMesh& m, const std::array<int, 4>& t) {
 BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral_deg) {
   BoundarySliverRemoval r;
   r.removed_per_tissue.assign(mesh.num_tissues(), 0);
-  std::map<Face, int> uses;  // number of live tets on each face
+  if (mesh.points.size() >= kMaxFaceKeyNodes) return r;  // beyond the face-key range: leave as is
+  std::unordered_map<std::uint64_t, int> uses;  // number of live tets on each face
   for (const auto& t : mesh.tets)
     for (int q = 0; q < 4; ++q) ++uses[face_of(t, q)];
   std::vector<char> alive(mesh.tets.size(), 1);
@@ -54,28 +49,7 @@ BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral
     }
   }
   if (r.tets_removed == 0) return r;
-  // Compact tets, then nodes (keeping their order so the result stays deterministic).
-  std::vector<std::array<int, 4>> tets;
-  std::vector<int> ids;
-  for (std::size_t i = 0; i < mesh.tets.size(); ++i)
-    if (alive[i]) {
-      tets.push_back(mesh.tets[i]);
-      ids.push_back(mesh.tissue_ids[i]);
-    }
-  std::vector<int> new_index(mesh.points.size(), -1);
-  for (const auto& t : tets)
-    for (int v : t) new_index[v] = 0;
-  std::vector<Eigen::Vector3d> points;
-  for (std::size_t v = 0; v < mesh.points.size(); ++v)
-    if (new_index[v] == 0) {
-      new_index[v] = static_cast<int>(points.size());
-      points.push_back(mesh.points[v]);
-    }
-  for (auto& t : tets)
-    for (int& v : t) v = new_index[v];
-  mesh.points.swap(points);
-  mesh.tets.swap(tets);
-  mesh.tissue_ids.swap(ids);
+  keep_tets(mesh, alive);
   return r;
 }
 

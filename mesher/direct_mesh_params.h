@@ -44,6 +44,9 @@ struct DirectMeshParams {
   /// Remove tets with a dihedral below this (degrees) that have >= 2 faces on the outer boundary
   /// (flat caps no vertex move can repair; boundary_slivers.h). 0 = keep them.
   double remove_boundary_slivers_deg = 10.0;
+  /// Improve tets with a dihedral below this (degrees) by 2-3 flips and edge removals inside one
+  /// tissue (sliver_flips.h): interfaces and volumes unchanged. 0 = off.
+  double flip_slivers_below_deg = 15.0;
 
   /// Reads the `direct:` map (unknown keys are errors; values range-checked with the key named).
   static DirectMeshParams from_yaml(YamlMap& map);

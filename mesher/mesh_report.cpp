@@ -91,6 +91,9 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
   j["components_not_meshed"] = missed;
   j["boundary_slivers_removed"] = {{"tets", r.meshing.boundary_slivers.tets_removed},
                                    {"volume_mm3", r.meshing.boundary_slivers.volume_removed_mm3}};
+  j["sliver_flips"] = {{"flips_2_3", r.meshing.sliver_flips.flips_23},
+                       {"edge_removals", r.meshing.sliver_flips.edge_removals},
+                       {"passes", r.meshing.sliver_flips.passes}};
   return j;
 }
 
@@ -104,6 +107,8 @@ std::string mesh_job_text(const MeshJobResult& r) {
     << r.meshing.missed.size() << "\n";
   s << "boundary slivers removed: " << r.meshing.boundary_slivers.tets_removed << " tets, "
     << fmt("%.4f mm^3\n", r.meshing.boundary_slivers.volume_removed_mm3);
+  s << "sliver flips: " << r.meshing.sliver_flips.flips_23 << " 2-3 flips, " << r.meshing.sliver_flips.edge_removals
+    << " edge removals in " << r.meshing.sliver_flips.passes << " passes\n";
   for (const auto& w : r.meshing.warnings) s << "WARNING: " << w << "\n";
   for (const auto& m : r.meshing.missed)
     s << "  " << m.tissue << ": " << m.voxels << " voxels, " << fmt("%.2f mm^3 at (%.1f, ", m.volume_mm3, m.centroid_mm[0])

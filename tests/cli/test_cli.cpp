@@ -1,6 +1,7 @@
 // Black-box tests of the tissuemesh program: the commands a user types and what they leave.
 #include "cli/cli_runner.h"
 #include "mesher/image_io.h"
+#include "support/test_helpers.h"
 #include "support/test_paths.h"
 
 #include <gtest/gtest.h>
@@ -16,20 +17,8 @@ using test::run_cli;
 
 namespace {
 
-// Two nested spheres (labels 1 and 2 in background 0), small enough to mesh in about a second.
-void write_spheres(const std::filesystem::path& path) {
-  LabelImage img;
-  img.dims = {30, 30, 20};
-  img.spacing = {1.0, 1.0, 1.5};
-  img.labels.resize(img.voxel_count());
-  for (int k = 0; k < 20; ++k)
-    for (int j = 0; j < 30; ++j)
-      for (int i = 0; i < 30; ++i) {
-        const double r = Eigen::Vector3d(i - 14.5, j - 14.5, 1.5 * (k - 9.5)).norm();
-        img.labels[img.index(i, j, k)] = r < 6 ? 2 : (r < 12 ? 1 : 0);
-      }
-  write_nifti(img, path.string());
-}
+// The shared nested spheres (labels 1 and 2 in background 0), meshed in about a second.
+void write_spheres(const std::filesystem::path& path) { write_nifti(test::nested_spheres(), path.string()); }
 
 void write_spheres_config(const std::filesystem::path& path) {
   std::ofstream(path) << "tissues:\n  - {name: shell, labels: [1]}\n  - {name: core, labels: [2]}\n"

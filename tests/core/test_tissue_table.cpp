@@ -1,6 +1,8 @@
 #include "core/errors.h"
 #include "core/tissue_table.h"
 
+#include "support/test_helpers.h"
+
 #include <gtest/gtest.h>
 
 using namespace tissuemesh;
@@ -11,14 +13,6 @@ TissueTable parse(const std::string& yaml) {
   TissueTable t = TissueTable::from_config(top);
   top.finish();
   return t;
-}
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
 }
 }  // namespace
 
@@ -41,14 +35,14 @@ TEST(TissueTable, DefaultIgnoresLabelZero) {
 
 TEST(TissueTable, UnmappedLabelIsNamed) {
   TissueTable t = parse("tissues: [{name: fat, labels: [1]}]");
-  const std::string msg = error_of([&] { t.check_against({{0, 10}, {1, 5}, {4, 3}}, "img.nii"); });
+  const std::string msg = test::input_error_of([&] { t.check_against({{0, 10}, {1, 5}, {4, 3}}, "img.nii"); });
   EXPECT_NE(msg.find("img.nii"), std::string::npos) << msg;
   EXPECT_NE(msg.find("label 4"), std::string::npos) << msg;
 }
 
 TEST(TissueTable, EmptyTissueIsNamed) {
   TissueTable t = parse("tissues: [{name: fat, labels: [1]}, {name: tumor, labels: [3]}]");
-  const std::string msg = error_of([&] { t.check_against({{0, 10}, {1, 5}}, "img.nii"); });
+  const std::string msg = test::input_error_of([&] { t.check_against({{0, 10}, {1, 5}}, "img.nii"); });
   EXPECT_NE(msg.find("tissue 'tumor'"), std::string::npos) << msg;
 }
 
@@ -61,17 +55,17 @@ TEST(TissueTable, ToTissueIdsMapsEveryVoxel) {
 }
 
 TEST(TissueTable, ConfigErrorsNameTheProblem) {
-  EXPECT_NE(error_of([] { parse("ignore_labels: [0]"); }).find("tissues"), std::string::npos);
-  EXPECT_NE(error_of([] { parse("tissues: [{name: a, labels: [1]}, {name: a, labels: [2]}]"); }).find("listed twice"),
+  EXPECT_NE(test::input_error_of([] { parse("ignore_labels: [0]"); }).find("tissues"), std::string::npos);
+  EXPECT_NE(test::input_error_of([] { parse("tissues: [{name: a, labels: [1]}, {name: a, labels: [2]}]"); }).find("listed twice"),
             std::string::npos);
-  EXPECT_NE(error_of([] { parse("tissues: [{name: a, labels: [1]}, {name: b, labels: [1]}]"); })
+  EXPECT_NE(test::input_error_of([] { parse("tissues: [{name: a, labels: [1]}, {name: b, labels: [1]}]"); })
                 .find("label 1 is mapped to more than one"),
             std::string::npos);
-  EXPECT_NE(error_of([] { parse("tissues: [{name: a, labels: [1]}]\nignore_labels: [1]"); }).find("ignore_labels"),
+  EXPECT_NE(test::input_error_of([] { parse("tissues: [{name: a, labels: [1]}]\nignore_labels: [1]"); }).find("ignore_labels"),
             std::string::npos);
-  EXPECT_NE(error_of([] { parse("tissues: [{name: a, lables: [1]}]"); }).find("lables"), std::string::npos);
-  EXPECT_NE(error_of([] { parse("tissues: [{name: a, labels: [x]}]"); }).find("tissues[0].labels"), std::string::npos);
-  EXPECT_NE(error_of([] { parse("tissues: [{name: a}]"); }).find("has no labels"), std::string::npos);
+  EXPECT_NE(test::input_error_of([] { parse("tissues: [{name: a, lables: [1]}]"); }).find("lables"), std::string::npos);
+  EXPECT_NE(test::input_error_of([] { parse("tissues: [{name: a, labels: [x]}]"); }).find("tissues[0].labels"), std::string::npos);
+  EXPECT_NE(test::input_error_of([] { parse("tissues: [{name: a}]"); }).find("has no labels"), std::string::npos);
 }
 
 TEST(TissueTable, YamlRoundTrip) {

@@ -4,6 +4,7 @@
 #include "mesher/conformity.h"
 #include "mesher/direct_mesher.h"
 #include "mesher/mesh_quality.h"
+#include "support/test_helpers.h"
 #include "support/tolerances.h"
 
 #include <gtest/gtest.h>
@@ -14,23 +15,11 @@ using namespace tissuemesh;
 
 namespace {
 
-// Two nested spheres (outer id 1 radius 16 mm, inner id 2 radius 9 mm) in a 1 x 1 x 1.5 mm grid.
-// Smoothing (about sigma^2 / R) and facet chords both shrink a sphere; at 9 mm and the coarse
-// sizes below they stay within kSmallImageVolumeRel.
+// The shared nested spheres (support/test_helpers.h), optionally placed with a direction matrix.
 LabelImage nested_spheres(const Eigen::Matrix3d& direction = Eigen::Matrix3d::Identity()) {
-  LabelImage img;
-  img.dims = {40, 40, 27};
-  img.spacing = {1.0, 1.0, 1.5};
+  LabelImage img = test::nested_spheres();
   img.origin = {-40, 12, 7};
   img.direction = direction;
-  img.labels.resize(img.voxel_count());
-  const Eigen::Vector3d c(19.5, 19.5, 19.5);
-  for (int k = 0; k < img.dims[2]; ++k)
-    for (int j = 0; j < img.dims[1]; ++j)
-      for (int i = 0; i < img.dims[0]; ++i) {
-        const double r = (Eigen::Vector3d(i * 1.0, j * 1.0, k * 1.5) - c).norm();
-        img.labels[img.index(i, j, k)] = r < 9 ? 2 : (r < 16 ? 1 : 0);
-      }
   return img;
 }
 

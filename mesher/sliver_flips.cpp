@@ -1,0 +1,257 @@
+#include "mesher/sliver_flips.h"
+
+#include "mesher/face_key.h"
+#include "mesher/mesh_quality.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
+namespace tissuemesh {
+
+namespace {
+
+constexpr int kMaxRing = 7;  // edge removal beyond 7 tets rarely helps and grows as n^3
+
+struct NewTet {
+  std::array<int, 4> v;
+  double quality;
+};
+
+class FlipMesh {
+ public:
+  explicit FlipMesh(TetMesh& m) : m_(m), alive_(m.tets.size(), 1) {
+    quality_.reserve(m.tets.size());
+    for (const auto& t : m.tets) quality_.push_back(min_dihedral(t));
+    for (std::size_t t = 0; t < m.tets.size(); ++t) add_faces(static_cast<int>(t));
+  }
+
+  double min_dihedral(const std::array<int, 4>& t) const {
+    const TetShape s = tet_shape(m_.points[t[0]], m_.points[t[1]], m_.points[t[2]], m_.points[t[3]]);
+    return *std::min_element(s.dihedral_deg.begin(), s.dihedral_deg.end());
+  }
+  double volume(const std::array<int, 4>& t) const {
+    return signed_tet_volume(m_.points[t[0]], m_.points[t[1]], m_.points[t[2]], m_.points[t[3]]);
+  }
+  // A positively oriented tet on these four nodes, or nothing if it is (nearly) flat.
+  bool oriented(std::array<int, 4> t, double min_volume, NewTet& out) const {
+    double v = volume(t);
+    if (v < 0) {
+      std::swap(t[2], t[3]);
+      v = -v;
+    }
+    if (!(v > min_volume)) return false;
+    out = {t, min_dihedral(t)};
+    return true;
+  }
+
+  // Other tet on face (a,b,c) than `t`, or -1.
+  int across(int a, int b, int c, int t) const {
+    auto it = faces_.find(key(a, b, c));
+    if (it == faces_.end()) return -1;
+    return it->second[0] == t ? it->second[1] : it->second[0];
+  }
+
+  // Tries the 2-3 flip through face `f` (opposite vertex index f) of tet t.
+  bool try_23(int t, int f, std::vector<NewTet>& out, std::vector<int>& old) const {
+    const auto& T = m_.tets[t];
+    const int a = T[(f + 1) % 4], b = T[(f + 2) % 4], c = T[(f + 3) % 4], d = T[f];
+    const int u = across(a, b, c, t);
+    if (u < 0 || m_.tissue_ids[u] != m_.tissue_ids[t]) return false;
+    const auto& U = m_.tets[u];
+    int e = -1;
+    for (int x : U)
+      if (x != a && x != b && x != c) e = x;
+    const double union_volume = volume(T) + volume(U);
+    const double eps = 1e-9 * union_volume;
+    std::vector<NewTet> n(3);
+    if (!oriented({a, b, d, e}, eps, n[0]) || !oriented({b, c, d, e}, eps, n[1]) ||
+        !oriented({c, a, d, e}, eps, n[2]))
+      return false;
+    double sum = 0;
+    for (const auto& x : n) sum += volume(x.v);
+    if (std::abs(sum - union_volume) > 1e-9 * union_volume) return false;  // d-e misses the face
+    out = n;
+    old = {t, u};
+    return true;
+  }
+
+  // Tries removing edge (p,q) of tet t: ring of tets around it, all of t's tissue, closed.
+  bool try_edge_removal(int t, int p, int q, std::vector<NewTet>& out, std::vector<int>& old) const {
+    const auto& T = m_.tets[t];
+    int r = -1, s = -1;
+    for (int x : T)
+      if (x != p && x != q) (r < 0 ? r : s) = x;
+    std::vector<int> ring = {r}, tets = {t};
+    int cur = t, next = s;
+    while (true) {
+      if (static_cast<int>(ring.size()) > kMaxRing) return false;
+      ring.push_back(next);
+      const int nb = across(p, q, next, cur);
+      if (nb < 0 || m_.tissue_ids[nb] != m_.tissue_ids[t]) return false;  // boundary or interface edge
+      int w = -1;
+      for (int x : m_.tets[nb])
+        if (x != p && x != q && x != next) w = x;
+      if (w == r) {
+        tets.push_back(nb);
+        break;
+      }
+      tets.push_back(nb);
+      cur = nb;
+      next = w;
+    }
+    const int n = static_cast<int>(ring.size());
+    if (n != static_cast<int>(tets.size()) || n < 3) return false;
+    double union_volume = 0;
+    for (int x : tets) union_volume += volume(m_.tets[x]);
+    const double eps = 1e-9 * union_volume;
+    // best[i][j]: best worst-quality of a triangulation of ring[i..j]; choice[i][j]: its apex k.
+    const double none = -std::numeric_limits<double>::infinity();
+    std::array<std::array<double, kMaxRing + 1>, kMaxRing + 1> best{};
+    std::array<std::array<int, kMaxRing + 1>, kMaxRing + 1> choice{};
+    for (int len = 1; len < n; ++len)
+      for (int i = 0; i + len < n; ++i) {
+        const int j = i + len;
+        if (len == 1) {
+          best[i][j] = std::numeric_limits<double>::infinity();
+          continue;
+        }
+        best[i][j] = none;
+        for (int k = i + 1; k < j; ++k) {
+          // The triangle must separate p from q, else its two tets overlap.
+          if (volume({ring[i], ring[k], ring[j], p}) * volume({ring[i], ring[k], ring[j], q}) >= 0) continue;
+          NewTet tp, tq;
+          if (!oriented({ring[i], ring[k], ring[j], p}, eps, tp) || !oriented({ring[i], ring[k], ring[j], q}, eps, tq))
+            continue;
+          const double qk = std::min({best[i][k], best[k][j], tp.quality, tq.quality});
+          if (qk > best[i][j]) {
+            best[i][j] = qk;
+            choice[i][j] = k;
+          }
+        }
+      }
+    if (best[0][n - 1] == none) return false;
+    std::vector<NewTet> result;
+    std::vector<std::pair<int, int>> stack = {{0, n - 1}};
+    while (!stack.empty()) {
+      const auto [i, j] = stack.back();
+      stack.pop_back();
+      if (j - i < 2) continue;
+      const int k = choice[i][j];
+      NewTet tp, tq;
+      oriented({ring[i], ring[k], ring[j], p}, eps, tp);
+      oriented({ring[i], ring[k], ring[j], q}, eps, tq);
+      result.push_back(tp);
+      result.push_back(tq);
+      stack.push_back({i, k});
+      stack.push_back({k, j});
+    }
+    double sum = 0;
+    for (const auto& x : result) sum += volume(x.v);
+    if (std::abs(sum - union_volume) > 1e-9 * union_volume) return false;  // ring not star-shaped
+    out = result;
+    old = tets;
+    return true;
+  }
+
+  void apply(const std::vector<int>& old, const std::vector<NewTet>& fresh) {
+    const int tissue = m_.tissue_ids[old.front()];
+    for (int t : old) {
+      remove_faces(t);
+      alive_[t] = 0;
+    }
+    for (const auto& n : fresh) {
+      m_.tets.push_back(n.v);
+      m_.tissue_ids.push_back(tissue);
+      quality_.push_back(n.quality);
+      alive_.push_back(1);
+      add_faces(static_cast<int>(m_.tets.size()) - 1);
+    }
+  }
+
+  // Flips keep every node in use, so only tets are dropped.
+  void compact() { keep_tets(m_, alive_); }
+
+  bool alive(int t) const { return alive_[t]; }
+  double quality(int t) const { return quality_[t]; }
+  std::size_t size() const { return m_.tets.size(); }
+  const std::array<int, 4>& tet(int t) const { return m_.tets[t]; }
+
+ private:
+  static std::uint64_t key(int a, int b, int c) { return face_key(a, b, c); }
+  void add_faces(int t) {
+    const auto& T = m_.tets[t];
+    for (int f = 0; f < 4; ++f) {
+      auto [it, fresh] = faces_.try_emplace(key(T[(f + 1) % 4], T[(f + 2) % 4], T[(f + 3) % 4]),
+                                            std::array<int, 2>{t, -1});
+      if (!fresh) it->second[it->second[0] < 0 ? 0 : 1] = t;
+    }
+  }
+  void remove_faces(int t) {
+    const auto& T = m_.tets[t];
+    for (int f = 0; f < 4; ++f) {
+      auto it = faces_.find(key(T[(f + 1) % 4], T[(f + 2) % 4], T[(f + 3) % 4]));
+      if (it->second[0] == t) it->second[0] = -1;
+      if (it->second[1] == t) it->second[1] = -1;
+      if (it->second[0] < 0 && it->second[1] < 0) faces_.erase(it);
+    }
+  }
+
+  TetMesh& m_;
+  std::vector<char> alive_;
+  std::vector<double> quality_;
+  std::unordered_map<std::uint64_t, std::array<int, 2>> faces_;
+};
+
+}  // namespace
+
+SliverFlipResult flip_slivers(TetMesh& mesh, double target_deg, int max_passes) {
+  SliverFlipResult r;
+  if (mesh.points.size() >= kMaxFaceKeyNodes) return r;  // beyond the face-key range: leave as is
+  FlipMesh fm(mesh);
+  static const int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  for (int pass = 0; pass < max_passes; ++pass) {
+    std::vector<int> bad;
+    for (std::size_t t = 0; t < fm.size(); ++t)
+      if (fm.alive(static_cast<int>(t)) && fm.quality(static_cast<int>(t)) < target_deg) bad.push_back(static_cast<int>(t));
+    std::sort(bad.begin(), bad.end(), [&](int a, int b) {
+      return fm.quality(a) != fm.quality(b) ? fm.quality(a) < fm.quality(b) : a < b;
+    });
+    ++r.passes;
+    std::size_t applied = 0;
+    for (int t : bad) {
+      if (!fm.alive(t)) continue;
+      std::vector<NewTet> best_new, cand;
+      std::vector<int> best_old, cand_old;
+      double best_q = -1;
+      bool best_is_23 = false;
+      auto consider = [&](bool ok, bool is_23) {
+        if (!ok) return;
+        double q_new = 1e300, q_old = 1e300;
+        for (const auto& n : cand) q_new = std::min(q_new, n.quality);
+        for (int o : cand_old) q_old = std::min(q_old, fm.quality(o));
+        if (q_new > q_old + 1e-9 && q_new > best_q) {
+          best_q = q_new;
+          best_new = cand;
+          best_old = cand_old;
+          best_is_23 = is_23;
+        }
+      };
+      const auto T = fm.tet(t);
+      for (const auto& e : kEdges) consider(fm.try_edge_removal(t, T[e[0]], T[e[1]], cand, cand_old), false);
+      for (int f = 0; f < 4; ++f) consider(fm.try_23(t, f, cand, cand_old), true);
+      if (best_q < 0) continue;
+      fm.apply(best_old, best_new);
+      ++applied;
+      ++(best_is_23 ? r.flips_23 : r.edge_removals);
+    }
+    if (applied == 0) break;
+  }
+  fm.compact();
+  return r;
+}
+
+}  // namespace tissuemesh

@@ -1,0 +1,29 @@
+// Sliver removal by topological flips that never touch a tissue interface or the boundary.
+//
+// For each tet whose smallest dihedral angle is below a target, the best of these is applied if
+// it raises the smallest dihedral angle of the tets it replaces (Shewchuk, "Two discrete
+// optimization algorithms for the topological improvement of tetrahedral meshes", 2002):
+//  - 2-3 flip: two tets sharing a face -> three tets around the edge joining their apexes;
+//  - edge removal: the n = 3..7 tets around an edge -> 2(n-2) tets, the ring polygon triangulated
+//    by dynamic programming to maximise the worst new tet (n = 3 is the 3-2 flip).
+// Only cells of one tissue take part and every replaced region keeps its outer faces, so tissue
+// volumes, interfaces, boundary and conformity are unchanged; nodes are neither added nor moved.
+// Deterministic (bad tets in order of quality, then index).
+#pragma once
+
+#include "core/tet_mesh.h"
+
+#include <cstddef>
+
+namespace tissuemesh {
+
+struct SliverFlipResult {
+  std::size_t flips_23 = 0;        ///< 2-3 flips applied
+  std::size_t edge_removals = 0;   ///< edge removals applied (3-2 flips included)
+  std::size_t passes = 0;          ///< sweeps over the bad tets
+};
+
+/// Improves tets with a dihedral angle below `target_deg` (degrees), at most `max_passes` sweeps.
+SliverFlipResult flip_slivers(TetMesh& mesh, double target_deg, int max_passes = 8);
+
+}  // namespace tissuemesh

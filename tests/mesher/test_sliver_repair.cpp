@@ -1,0 +1,95 @@
+// Sliver repair passes on a real CGAL mesh: flips must keep tissue volumes, interfaces and
+// conformity exactly and only raise quality; boundary peeling only removes flat outer caps.
+#include "mesher/boundary_slivers.h"
+#include "mesher/conformity.h"
+#include "mesher/direct_mesher.h"
+#include "mesher/mesh_quality.h"
+#include "mesher/sliver_flips.h"
+#include "support/test_helpers.h"
+#include "support/tolerances.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+
+using namespace tissuemesh;
+
+namespace {
+
+// Nested spheres meshed without any repair, so that slivers remain for the passes to work on.
+TetMesh unrepaired_mesh() {
+  const LabelImage img = test::nested_spheres();
+  DirectMeshParams p;
+  p.facet_size_mm = 2.0;
+  p.facet_distance_mm = 0.3;
+  p.cell_size_mm = 3.0;
+  p.refine_tissue = "";
+  p.exude = false;
+  p.remove_boundary_slivers_deg = 0;
+  p.flip_slivers_below_deg = 0;
+  Progress progress;
+  return mesh_labels_direct(img, {"outer", "inner"}, p, progress).mesh;
+}
+
+// Faces between different tissues or on the boundary, as (sorted nodes) -> tissue pair.
+std::map<std::array<int, 3>, std::pair<int, int>> interface_faces(const TetMesh& m) {
+  std::map<std::array<int, 3>, std::vector<int>> faces;
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    for (int f = 0; f < 4; ++f) {
+      std::array<int, 3> k{m.tets[t][(f + 1) % 4], m.tets[t][(f + 2) % 4], m.tets[t][(f + 3) % 4]};
+      std::sort(k.begin(), k.end());
+      faces[k].push_back(m.tissue_ids[t]);
+    }
+  std::map<std::array<int, 3>, std::pair<int, int>> out;
+  for (const auto& [k, ids] : faces) {
+    const int a = ids[0], b = ids.size() > 1 ? ids[1] : 0;
+    if (a != b) out[k] = {std::min(a, b), std::max(a, b)};
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(SliverFlips, KeepInterfacesVolumesAndConformityAndRaiseQuality) {
+  TetMesh mesh = unrepaired_mesh();
+  const auto faces_before = interface_faces(mesh);
+  const QualityReport before = compute_quality(mesh);
+  const SliverFlipResult r = flip_slivers(mesh, 15.0);
+  EXPECT_GT(r.edge_removals + r.flips_23, 0u);
+  EXPECT_TRUE(check_conformity(mesh).conforming());
+  EXPECT_EQ(interface_faces(mesh), faces_before);  // no interface or boundary face changed
+  const QualityReport after = compute_quality(mesh);
+  for (std::size_t t = 0; t < before.tissues.size(); ++t)
+    EXPECT_NEAR(after.tissues[t].volume_mm3, before.tissues[t].volume_mm3,
+                test::kRelativeRoundoff * before.tissues[t].volume_mm3);
+  EXPECT_EQ(after.total.vertices, before.total.vertices);  // nodes neither added nor lost
+  EXPECT_GE(after.total.min_dihedral_deg, before.total.min_dihedral_deg);
+  EXPECT_LT(after.total.tets_below_10deg, before.total.tets_below_10deg);
+}
+
+TEST(SliverFlips, AreDeterministic) {
+  TetMesh a = unrepaired_mesh(), b = unrepaired_mesh();
+  flip_slivers(a, 15.0);
+  flip_slivers(b, 15.0);
+  EXPECT_EQ(a.tets, b.tets);
+  EXPECT_EQ(a.tissue_ids, b.tissue_ids);
+}
+
+TEST(BoundarySlivers, RemoveOnlyFlatOuterCaps) {
+  TetMesh mesh = unrepaired_mesh();
+  const std::size_t tets_before = mesh.tets.size();
+  const QualityReport before = compute_quality(mesh);
+  const BoundarySliverRemoval r = remove_boundary_slivers(mesh, 10.0);
+  EXPECT_EQ(mesh.tets.size(), tets_before - r.tets_removed);
+  const ConformityReport c = check_conformity(mesh);
+  EXPECT_TRUE(c.conforming());  // no orphan node, boundary still closed and manifold
+  const QualityReport after = compute_quality(mesh);
+  EXPECT_NEAR(after.total.volume_mm3, before.total.volume_mm3 - r.volume_removed_mm3,
+              test::kRelativeRoundoff * before.total.volume_mm3);
+  // The inner sphere never touches the outside, so none of its tets can be a boundary cap.
+  EXPECT_EQ(r.removed_per_tissue[1], 0u);
+  EXPECT_EQ(after.tissues[1].tets, before.tissues[1].tets);
+}
