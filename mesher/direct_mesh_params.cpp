@@ -30,6 +30,7 @@ DirectMeshParams DirectMeshParams::from_yaml(YamlMap& m) {
   p.sliver_time_limit_s = m.positive("sliver_time_limit_s", p.sliver_time_limit_s);
   p.remove_boundary_slivers_deg = m.in_range("remove_boundary_slivers_deg", p.remove_boundary_slivers_deg, 0.0, 30.0);
   p.flip_slivers_below_deg = m.in_range("flip_slivers_below_deg", p.flip_slivers_below_deg, 0.0, 60.0);
+  p.interface_flips = m.boolean("interface_flips", p.interface_flips);
   m.finish();
   return p;
 }
@@ -58,6 +59,7 @@ void DirectMeshParams::to_yaml(YAML::Emitter& out) const {
   out << YAML::Key << "sliver_time_limit_s" << YAML::Value << sliver_time_limit_s;
   out << YAML::Key << "remove_boundary_slivers_deg" << YAML::Value << remove_boundary_slivers_deg;
   out << YAML::Key << "flip_slivers_below_deg" << YAML::Value << flip_slivers_below_deg;
+  out << YAML::Key << "interface_flips" << YAML::Value << interface_flips;
   out << YAML::EndMap;
 }
 

@@ -47,6 +47,9 @@ struct DirectMeshParams {
   /// Improve tets with a dihedral below this (degrees) by 2-3 flips and edge removals inside one
   /// tissue (sliver_flips.h): interfaces and volumes unchanged. 0 = off.
   double flip_slivers_below_deg = 15.0;
+  /// Let those flips give a flat wedge on an interface to the neighbouring tissue (moves the
+  /// interface by the wedge's thickness; the moved volume is reported).
+  bool interface_flips = true;
 
   /// Reads the `direct:` map (unknown keys are errors; values range-checked with the key named).
   static DirectMeshParams from_yaml(YamlMap& map);

@@ -318,7 +318,7 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
   if (mesh.tets.empty()) throw MeshingError("CGAL Mesh_3 produced no tetrahedra");
   if (params.remove_boundary_slivers_deg > 0)
     result.boundary_slivers = remove_boundary_slivers(mesh, params.remove_boundary_slivers_deg);
-  if (params.flip_slivers_below_deg > 0) result.sliver_flips = flip_slivers(mesh, params.flip_slivers_below_deg);
+  if (params.flip_slivers_below_deg > 0) result.sliver_flips = flip_slivers(mesh, params.flip_slivers_below_deg, params.interface_flips);
 
   // Which image components are covered by tets of their tissue (centroid in the component's
   // voxel box grown by one voxel)? The rest is reported by name, size and place.

@@ -93,7 +93,9 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
                                    {"volume_mm3", r.meshing.boundary_slivers.volume_removed_mm3}};
   j["sliver_flips"] = {{"flips_2_3", r.meshing.sliver_flips.flips_23},
                        {"edge_removals", r.meshing.sliver_flips.edge_removals},
-                       {"passes", r.meshing.sliver_flips.passes}};
+                       {"passes", r.meshing.sliver_flips.passes},
+                       {"interface_flips", r.meshing.sliver_flips.interface_flips},
+                       {"volume_moved_between_tissues_mm3", r.meshing.sliver_flips.volume_relabelled_mm3}};
   return j;
 }
 
@@ -108,7 +110,9 @@ std::string mesh_job_text(const MeshJobResult& r) {
   s << "boundary slivers removed: " << r.meshing.boundary_slivers.tets_removed << " tets, "
     << fmt("%.4f mm^3\n", r.meshing.boundary_slivers.volume_removed_mm3);
   s << "sliver flips: " << r.meshing.sliver_flips.flips_23 << " 2-3 flips, " << r.meshing.sliver_flips.edge_removals
-    << " edge removals in " << r.meshing.sliver_flips.passes << " passes\n";
+    << " edge removals (" << r.meshing.sliver_flips.interface_flips << " across interfaces, "
+    << fmt("%.4f mm^3 moved", r.meshing.sliver_flips.volume_relabelled_mm3) << ") in " << r.meshing.sliver_flips.passes
+    << " passes\n";
   for (const auto& w : r.meshing.warnings) s << "WARNING: " << w << "\n";
   for (const auto& m : r.meshing.missed)
     s << "  " << m.tissue << ": " << m.voxels << " voxels, " << fmt("%.2f mm^3 at (%.1f, ", m.volume_mm3, m.centroid_mm[0])

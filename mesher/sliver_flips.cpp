@@ -79,8 +79,9 @@ class FlipMesh {
     return true;
   }
 
-  // Tries removing edge (p,q) of tet t: ring of tets around it, all of t's tissue, closed.
-  bool try_edge_removal(int t, int p, int q, std::vector<NewTet>& out, std::vector<int>& old) const {
+  // Tries removing edge (p,q) of tet t: a closed ring of tets around it, all of `tissue` except
+  // possibly t itself (an interface flip relabels t).
+  bool try_edge_removal(int t, int p, int q, int tissue, std::vector<NewTet>& out, std::vector<int>& old) const {
     const auto& T = m_.tets[t];
     int r = -1, s = -1;
     for (int x : T)
@@ -91,7 +92,7 @@ class FlipMesh {
       if (static_cast<int>(ring.size()) > kMaxRing) return false;
       ring.push_back(next);
       const int nb = across(p, q, next, cur);
-      if (nb < 0 || m_.tissue_ids[nb] != m_.tissue_ids[t]) return false;  // boundary or interface edge
+      if (nb < 0 || m_.tissue_ids[nb] != tissue) return false;  // boundary or interface edge
       int w = -1;
       for (int x : m_.tets[nb])
         if (x != p && x != q && x != next) w = x;
@@ -157,8 +158,19 @@ class FlipMesh {
     return true;
   }
 
-  void apply(const std::vector<int>& old, const std::vector<NewTet>& fresh) {
-    const int tissue = m_.tissue_ids[old.front()];
+  // Tissue shared by the two tets across the faces of t that contain edge (p,q), if it differs
+  // from t's own: then t is a flat wedge on that tissue's interface. -1 otherwise.
+  int wedge_tissue(int t, int p, int q) const {
+    int other[2], n = 0;
+    for (int x : m_.tets[t])
+      if (x != p && x != q) other[n++] = x;
+    const int n1 = across(p, q, other[0], t), n2 = across(p, q, other[1], t);
+    if (n1 < 0 || n2 < 0) return -1;
+    const int b = m_.tissue_ids[n1];
+    return (b == m_.tissue_ids[n2] && b != m_.tissue_ids[t]) ? b : -1;
+  }
+
+  void apply(const std::vector<int>& old, const std::vector<NewTet>& fresh, int tissue) {
     for (int t : old) {
       remove_faces(t);
       alive_[t] = 0;
@@ -177,6 +189,7 @@ class FlipMesh {
 
   bool alive(int t) const { return alive_[t]; }
   double quality(int t) const { return quality_[t]; }
+  int tissue(int t) const { return m_.tissue_ids[t]; }
   std::size_t size() const { return m_.tets.size(); }
   const std::array<int, 4>& tet(int t) const { return m_.tets[t]; }
 
@@ -208,7 +221,7 @@ class FlipMesh {
 
 }  // namespace
 
-SliverFlipResult flip_slivers(TetMesh& mesh, double target_deg, int max_passes) {
+SliverFlipResult flip_slivers(TetMesh& mesh, double target_deg, bool allow_interface_flips, int max_passes) {
   SliverFlipResult r;
   if (mesh.points.size() >= kMaxFaceKeyNodes) return r;  // beyond the face-key range: leave as is
   FlipMesh fm(mesh);
@@ -227,8 +240,8 @@ SliverFlipResult flip_slivers(TetMesh& mesh, double target_deg, int max_passes) 
       std::vector<NewTet> best_new, cand;
       std::vector<int> best_old, cand_old;
       double best_q = -1;
-      bool best_is_23 = false;
-      auto consider = [&](bool ok, bool is_23) {
+      int best_kind = 0, best_tissue = fm.tissue(t);  // kind: 0 edge removal, 1 2-3, 2 interface
+      auto consider = [&](bool ok, int kind, int tissue) {
         if (!ok) return;
         double q_new = 1e300, q_old = 1e300;
         for (const auto& n : cand) q_new = std::min(q_new, n.quality);
@@ -237,16 +250,25 @@ SliverFlipResult flip_slivers(TetMesh& mesh, double target_deg, int max_passes) 
           best_q = q_new;
           best_new = cand;
           best_old = cand_old;
-          best_is_23 = is_23;
+          best_kind = kind;
+          best_tissue = tissue;
         }
       };
       const auto T = fm.tet(t);
-      for (const auto& e : kEdges) consider(fm.try_edge_removal(t, T[e[0]], T[e[1]], cand, cand_old), false);
-      for (int f = 0; f < 4; ++f) consider(fm.try_23(t, f, cand, cand_old), true);
+      for (const auto& e : kEdges) {
+        consider(fm.try_edge_removal(t, T[e[0]], T[e[1]], fm.tissue(t), cand, cand_old), 0, fm.tissue(t));
+        const int wedge = allow_interface_flips ? fm.wedge_tissue(t, T[e[0]], T[e[1]]) : -1;
+        if (wedge > 0) consider(fm.try_edge_removal(t, T[e[0]], T[e[1]], wedge, cand, cand_old), 2, wedge);
+      }
+      for (int f = 0; f < 4; ++f) consider(fm.try_23(t, f, cand, cand_old), 1, fm.tissue(t));
       if (best_q < 0) continue;
-      fm.apply(best_old, best_new);
+      if (best_kind == 2) {
+        ++r.interface_flips;
+        r.volume_relabelled_mm3 += fm.volume(fm.tet(t));
+      }
+      fm.apply(best_old, best_new, best_tissue);
       ++applied;
-      ++(best_is_23 ? r.flips_23 : r.edge_removals);
+      ++(best_kind == 1 ? r.flips_23 : r.edge_removals);
     }
     if (applied == 0) break;
   }

@@ -8,6 +8,10 @@
 //    by dynamic programming to maximise the worst new tet (n = 3 is the 3-2 flip).
 // Only cells of one tissue take part and every replaced region keeps its outer faces, so tissue
 // volumes, interfaces, boundary and conformity are unchanged; nodes are neither added nor moved.
+// Optionally (interface flips) a flat wedge whose two faces on one edge lie on the same
+// neighbouring tissue is first given to that tissue, which flips the interface's diagonal across
+// the wedge and makes the edge removable: the interface moves by the wedge's thickness and the
+// wedge's (near-zero) volume changes tissue; both are reported.
 // Deterministic (bad tets in order of quality, then index).
 #pragma once
 
@@ -19,11 +23,14 @@ namespace tissuemesh {
 
 struct SliverFlipResult {
   std::size_t flips_23 = 0;        ///< 2-3 flips applied
-  std::size_t edge_removals = 0;   ///< edge removals applied (3-2 flips included)
+  std::size_t edge_removals = 0;   ///< edge removals applied (3-2 flips and interface flips included)
+  std::size_t interface_flips = 0; ///< edge removals that relabelled a flat interface wedge
+  double volume_relabelled_mm3 = 0.0;  ///< total volume of those wedges (moved between tissues)
   std::size_t passes = 0;          ///< sweeps over the bad tets
 };
 
 /// Improves tets with a dihedral angle below `target_deg` (degrees), at most `max_passes` sweeps.
-SliverFlipResult flip_slivers(TetMesh& mesh, double target_deg, int max_passes = 8);
+SliverFlipResult flip_slivers(TetMesh& mesh, double target_deg, bool allow_interface_flips,
+                              int max_passes = 8);
 
 }  // namespace tissuemesh

@@ -57,7 +57,7 @@ TEST(SliverFlips, KeepInterfacesVolumesAndConformityAndRaiseQuality) {
   TetMesh mesh = unrepaired_mesh();
   const auto faces_before = interface_faces(mesh);
   const QualityReport before = compute_quality(mesh);
-  const SliverFlipResult r = flip_slivers(mesh, 15.0);
+  const SliverFlipResult r = flip_slivers(mesh, 15.0, /*allow_interface_flips=*/false);
   EXPECT_GT(r.edge_removals + r.flips_23, 0u);
   EXPECT_TRUE(check_conformity(mesh).conforming());
   EXPECT_EQ(interface_faces(mesh), faces_before);  // no interface or boundary face changed
@@ -72,10 +72,25 @@ TEST(SliverFlips, KeepInterfacesVolumesAndConformityAndRaiseQuality) {
 
 TEST(SliverFlips, AreDeterministic) {
   TetMesh a = unrepaired_mesh(), b = unrepaired_mesh();
-  flip_slivers(a, 15.0);
-  flip_slivers(b, 15.0);
+  flip_slivers(a, 15.0, true);
+  flip_slivers(b, 15.0, true);
   EXPECT_EQ(a.tets, b.tets);
   EXPECT_EQ(a.tissue_ids, b.tissue_ids);
+}
+
+TEST(SliverFlips, InterfaceFlipsMoveOnlyTheReportedWedgeVolume) {
+  TetMesh inside_only = unrepaired_mesh(), across = unrepaired_mesh();
+  const QualityReport before = compute_quality(across);
+  flip_slivers(inside_only, 15.0, false);
+  const SliverFlipResult r = flip_slivers(across, 15.0, true);
+  EXPECT_TRUE(check_conformity(across).conforming());
+  const QualityReport after = compute_quality(across);
+  // The total is unchanged; each tissue changes by at most the wedge volume moved.
+  EXPECT_NEAR(after.total.volume_mm3, before.total.volume_mm3, test::kRelativeRoundoff * before.total.volume_mm3);
+  for (std::size_t t = 0; t < before.tissues.size(); ++t)
+    EXPECT_LE(std::abs(after.tissues[t].volume_mm3 - before.tissues[t].volume_mm3),
+              r.volume_relabelled_mm3 + test::kRelativeRoundoff * before.total.volume_mm3);
+  EXPECT_LE(after.total.tets_below_10deg, compute_quality(inside_only).total.tets_below_10deg);
 }
 
 TEST(BoundarySlivers, RemoveOnlyFlatOuterCaps) {
