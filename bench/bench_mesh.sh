@@ -29,6 +29,6 @@ import json; r=json.load(open('$WORK/out/report.json'))['result']; t=r['quality'
 print(r['tets'], r['nodes'], round(t['min_dihedral_deg'],2), t['tets_below_10deg'])")
   t_med=$(median < "$WORK/times"); t_min=$(sort -g "$WORK/times" | head -1); t_max=$(sort -g "$WORK/times" | tail -1)
   m_med=$(median < "$WORK/mem")
-  printf "| %s | %s | %s | %.2f (%.2f-%.2f) | %.0f | %s | %s (%.2f%%) |\n" "$cfg" "$tets" "$nodes" "$t_med" "$t_min" "$t_max" \
+  printf "| %s | %s | %s | %.2f (%.2f-%.2f) | %.0f | %s | %s (%.3f%%) |\n" "$cfg" "$tets" "$nodes" "$t_med" "$t_min" "$t_max" \
     "$m_med" "$mind" "$below" "$(awk -v b="$below" -v t="$tets" "BEGIN {print 100 * b / t}")"
 done

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -204,6 +205,7 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
   namespace p = CGAL::parameters;
   // relative_error_bound: the boundary search stops at 1e-6 of the image diagonal (CGAL's weighted
   // image example), far below a voxel; the default 1e-3 would be ~0.3 mm here.
+  auto domain_stage = std::make_unique<Progress::Stage>(progress, "domain and border features");
   Domain domain = weights.empty()
                       ? Domain::create_labeled_image_mesh_domain(image, p::relative_error_bound = 1e-6)
                       : Domain::create_labeled_image_mesh_domain(image, p::weights = weight_image,
@@ -216,7 +218,9 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
     const std::vector<std::vector<Point>> none;
     CGAL::polylines_to_protect<Point, std::uint8_t>(image, polylines, none.begin(), none.end());
     domain.add_features(polylines.begin(), polylines.end());
+    domain_stage->note(std::to_string(polylines.size()) + " polylines protected on the image border");
   }
+  domain_stage.reset();
 
   SizeField facet_field, cell_field;
   facet_field.base = params.facet_size_mm;
