@@ -62,7 +62,12 @@ void add_phantom_command(CLI::App& cli, Invocation& run) {
       record["phantom_parameters_yaml"] = std::string(yaml.c_str());
       record["image"] = image_summary_json(image);
       record["outputs"] = {{"labels", target.string()}};
-      std::ofstream(out.stage(target.filename().string() + ".json")) << record.dump(2) << "\n";
+      {
+        const auto json_path = out.stage(target.filename().string() + ".json");
+        std::ofstream json(json_path);
+        json << record.dump(2) << "\n";
+        if (!json.flush()) throw OutputError(json_path.string() + ": cannot write run record");
+      }
       out.commit();
       std::cout << image_summary_text(image) << "wrote " << target.string() << "\n";
     });

@@ -15,7 +15,7 @@ namespace {
 void write_text(const std::filesystem::path& path, const std::string& text) {
   std::ofstream f(path);
   f << text;
-  if (!f) throw OutputError(path.string() + ": cannot write");
+  if (!f.flush()) throw OutputError(path.string() + ": cannot write");
 }
 }  // namespace
 

@@ -38,11 +38,36 @@ fs::path OutputDir::stage(const std::string& name) {
 }
 
 void OutputDir::commit() {
+  // All or nothing: files already in the target that would be replaced are set aside first, and
+  // put back if any move fails.
+  std::vector<std::string> placed, set_aside;
+  auto roll_back = [&] {
+    std::error_code ec;
+    for (const auto& name : placed) fs::remove(target_ / name, ec);
+    for (const auto& name : set_aside) fs::rename(staging_ / (name + ".previous"), target_ / name, ec);
+  };
+  for (const auto& name : names_) {
+    if (!fs::exists(staging_ / name))
+      throw OutputError((target_ / name).string() + ": output was never written");
+    if (fs::is_directory(target_ / name))
+      throw OutputError((target_ / name).string() + ": a folder is in the way of this output file");
+  }
   for (const auto& name : names_) {
     std::error_code ec;
-    if (!fs::exists(staging_ / name)) continue;
+    if (fs::exists(target_ / name)) {
+      fs::rename(target_ / name, staging_ / (name + ".previous"), ec);
+      if (ec) {
+        roll_back();
+        throw OutputError((target_ / name).string() + ": cannot replace existing file: " + ec.message());
+      }
+      set_aside.push_back(name);
+    }
     fs::rename(staging_ / name, target_ / name, ec);
-    if (ec) throw OutputError((target_ / name).string() + ": cannot move output into place: " + ec.message());
+    if (ec) {
+      roll_back();
+      throw OutputError((target_ / name).string() + ": cannot move output into place: " + ec.message());
+    }
+    placed.push_back(name);
   }
   committed_ = true;
 }

@@ -29,6 +29,18 @@ BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral
   std::unordered_map<std::uint64_t, int> uses;  // number of live tets on each face
   for (const auto& t : mesh.tets)
     for (int q = 0; q < 4; ++q) ++uses[face_of(t, q)];
+  // Boundary faces per edge: removing a cap must not give an edge more than two of them.
+  std::unordered_map<std::uint64_t, int> boundary_edge_faces;
+  auto edge = [](int a, int b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
+  };
+  auto count_face_edges = [&](const std::array<int, 4>& t, int skip, int delta) {
+    const int v[3] = {t[(skip + 1) % 4], t[(skip + 2) % 4], t[(skip + 3) % 4]};
+    for (int k = 0; k < 3; ++k) boundary_edge_faces[edge(v[k], v[(k + 1) % 3])] += delta;
+  };
+  for (const auto& t : mesh.tets)
+    for (int q = 0; q < 4; ++q)
+      if (uses[face_of(t, q)] == 1) count_face_edges(t, q, +1);
   std::vector<char> alive(mesh.tets.size(), 1);
   bool changed = true;
   while (changed) {
@@ -37,10 +49,24 @@ BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral
       if (!alive[i]) continue;
       const auto& t = mesh.tets[i];
       int outer = 0;
-      for (int q = 0; q < 4; ++q) outer += uses[face_of(t, q)] == 1;
+      std::array<bool, 4> is_outer{};
+      for (int q = 0; q < 4; ++q) outer += (is_outer[q] = uses[face_of(t, q)] == 1);
       if (outer < 2 || min_dihedral(mesh, t) >= min_dihedral_deg) continue;
+      if (outer == 2) {
+        // The two inner faces share the edge opposite the outer faces' common edge; it must not
+        // be on the boundary already, or it would end up with four boundary faces.
+        int shared[2], n = 0;
+        for (int q = 0; q < 4; ++q)
+          if (is_outer[q]) shared[n++] = t[q];  // face q is opposite vertex q
+        if (boundary_edge_faces[edge(shared[0], shared[1])] > 0) continue;
+      }
       alive[i] = 0;
-      for (int q = 0; q < 4; ++q) --uses[face_of(t, q)];
+      for (int q = 0; q < 4; ++q) {
+        const bool was_outer = uses[face_of(t, q)] == 1;
+        --uses[face_of(t, q)];
+        // An outer face leaves the boundary; an inner face joins it (its other tet remains).
+        count_face_edges(t, q, was_outer ? -1 : +1);
+      }
       ++r.tets_removed;
       ++r.removed_per_tissue[mesh.tissue_ids[i] - 1];
       r.volume_removed_mm3 += signed_tet_volume(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]],

@@ -2,6 +2,7 @@
 #include "mesher/direct_mesher.h"
 
 #include "core/errors.h"
+#include "mesher/face_key.h"
 #include "mesher/label_components.h"
 #include "mesher/label_weights.h"
 
@@ -97,16 +98,12 @@ bool inside_protecting_ball(const Tr& tr, const Point& p) {
     }
     return false;
   }
-  const Tr::Weighted_point wp(p);
-  const Tr::Cell_handle cell = tr.locate(wp);
-  std::vector<Tr::Vertex_handle> near;
-  tr.vertices_on_conflict_zone_boundary(wp, cell, std::back_inserter(near));
-  for (const auto& v : near) {
-    if (tr.is_infinite(v)) continue;
-    const auto& q = tr.point(v);
-    if (q.weight() > 0 && CGAL::squared_distance(p, q.point()) <= q.weight()) return true;
-  }
-  return false;
+  // As CGAL's Triangulation_helpers::inside_protecting_balls: the nearest vertex in the power
+  // metric is the only ball that can contain p.
+  const Tr::Vertex_handle v = tr.nearest_power_vertex(p);
+  if (v == Tr::Vertex_handle() || tr.is_infinite(v)) return false;
+  const auto& wp = tr.point(v);
+  return wp.weight() > 0 && CGAL::squared_distance(p, wp.point()) <= wp.weight();
 }
 
 // Seeds surface points on every component (see header): from a voxel of the component walk along
@@ -320,36 +317,40 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
     mesh.tissue_ids.push_back(static_cast<int>(c3t3.subdomain_index(cit)));
   }
   if (mesh.tets.empty()) throw MeshingError("CGAL Mesh_3 produced no tetrahedra");
+  if (mesh.points.size() >= kMaxFaceKeyNodes &&
+      (params.remove_boundary_slivers_deg > 0 || params.flip_slivers_below_deg > 0))
+    result.warnings.push_back("sliver repair skipped: the mesh has more than 2,097,151 nodes");
   if (params.remove_boundary_slivers_deg > 0)
     result.boundary_slivers = remove_boundary_slivers(mesh, params.remove_boundary_slivers_deg);
   if (params.flip_slivers_below_deg > 0) result.sliver_flips = flip_slivers(mesh, params.flip_slivers_below_deg, params.interface_flips);
 
-  // Which image components are covered by tets of their tissue (centroid in the component's
-  // voxel box grown by one voxel)? The rest is reported by name, size and place.
+  // Which image components are covered by tets of their tissue? A tet credits the component of
+  // the voxel under its centroid or, when that voxel has another tissue (the mesh boundary is
+  // smooth, the voxels are not), the nearest voxel of its own tissue among the 26 neighbours.
+  // The rest is reported by name, size and place.
   std::vector<char> covered(comps.components.size(), 0);
   const Eigen::Matrix3d to_index = ids.index_to_physical().inverse();
-  std::vector<std::vector<std::size_t>> comps_of_tissue(names.size() + 1);
-  for (std::size_t c = 0; c < comps.components.size(); ++c)
-    comps_of_tissue[comps.components[c].tissue_id].push_back(c);
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (int v : mesh.tets[t]) centroid += mesh.points[v] / 4.0;
     const Eigen::Vector3d ijk = to_index * (centroid - ids.origin);
-    const int vi = static_cast<int>(std::lround(ijk[0])), vj = static_cast<int>(std::lround(ijk[1])),
-              vk = static_cast<int>(std::lround(ijk[2]));
-    if (vi >= 0 && vj >= 0 && vk >= 0 && vi < ids.dims[0] && vj < ids.dims[1] && vk < ids.dims[2]) {
-      const std::int32_t c = comps.component_of_voxel[ids.index(vi, vj, vk)];
-      if (c >= 0 && comps.components[c].tissue_id == mesh.tissue_ids[t]) {
-        covered[c] = 1;
-        continue;
-      }
-    }
-    for (std::size_t c : comps_of_tissue[mesh.tissue_ids[t]]) {
-      const auto& cc = comps.components[c];
-      if (!covered[c] && vi >= cc.box_min[0] - 1 && vi <= cc.box_max[0] + 1 && vj >= cc.box_min[1] - 1 &&
-          vj <= cc.box_max[1] + 1 && vk >= cc.box_min[2] - 1 && vk <= cc.box_max[2] + 1)
-        covered[c] = 1;
-    }
+    const int ci = static_cast<int>(std::lround(ijk[0])), cj = static_cast<int>(std::lround(ijk[1])),
+              ck = static_cast<int>(std::lround(ijk[2]));
+    double best = 1e300;
+    std::int32_t best_comp = -1;
+    for (int dk = -1; dk <= 1; ++dk)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int i = ci + di, j = cj + dj, k = ck + dk;
+          if (i < 0 || j < 0 || k < 0 || i >= ids.dims[0] || j >= ids.dims[1] || k >= ids.dims[2]) continue;
+          if (ids.at(i, j, k) != mesh.tissue_ids[t]) continue;
+          const double d = (Eigen::Vector3d(i, j, k) - ijk).squaredNorm();
+          if (d < best) {
+            best = d;
+            best_comp = comps.component_of_voxel[ids.index(i, j, k)];
+          }
+        }
+    if (best_comp >= 0) covered[best_comp] = 1;
   }
   for (std::size_t c = 0; c < comps.components.size(); ++c) {
     if (covered[c]) continue;

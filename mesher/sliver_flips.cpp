@@ -89,7 +89,7 @@ class FlipMesh {
     std::vector<int> ring = {r}, tets = {t};
     int cur = t, next = s;
     while (true) {
-      if (static_cast<int>(ring.size()) > kMaxRing) return false;
+      if (static_cast<int>(ring.size()) >= kMaxRing) return false;
       ring.push_back(next);
       const int nb = across(p, q, next, cur);
       if (nb < 0 || m_.tissue_ids[nb] != tissue) return false;  // boundary or interface edge
@@ -158,16 +158,51 @@ class FlipMesh {
     return true;
   }
 
-  // Tissue shared by the two tets across the faces of t that contain edge (p,q), if it differs
-  // from t's own: then t is a flat wedge on that tissue's interface. -1 otherwise.
+  // Tissue B of the two tets across the faces of t that contain edge (p,q), when t is a flat
+  // wedge on B's interface that can be given to B without changing anything else: t's other two
+  // faces border t's own tissue A, every other tet around the opposite edge (r,s) is A (so A
+  // stays face-connected there), and t is flat. -1 otherwise.
   int wedge_tissue(int t, int p, int q) const {
     int other[2], n = 0;
     for (int x : m_.tets[t])
       if (x != p && x != q) other[n++] = x;
-    const int n1 = across(p, q, other[0], t), n2 = across(p, q, other[1], t);
+    const int r = other[0], s = other[1], a = m_.tissue_ids[t];
+    const int n1 = across(p, q, r, t), n2 = across(p, q, s, t);
     if (n1 < 0 || n2 < 0) return -1;
     const int b = m_.tissue_ids[n1];
-    return (b == m_.tissue_ids[n2] && b != m_.tissue_ids[t]) ? b : -1;
+    if (b != m_.tissue_ids[n2] || b == a) return -1;
+    const int n3 = across(r, s, p, t), n4 = across(r, s, q, t);
+    if (n3 < 0 || n4 < 0 || m_.tissue_ids[n3] != a || m_.tissue_ids[n4] != a) return -1;
+    if (!all_around_edge_are(r, s, t, a)) return -1;
+    // Flat: volume under a tenth of the regular tet on its longest edge (L^3 / (6 sqrt 2)).
+    const auto& T = m_.tets[t];
+    double longest = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (m_.points[T[i]] - m_.points[T[j]]).norm());
+    if (volume(T) > 0.1 * longest * longest * longest / (6.0 * std::sqrt(2.0))) return -1;
+    return b;
+  }
+
+  // True if every tet around edge (r,s) other than `t` has tissue `tissue` (walking both ways
+  // from t; an edge on the boundary has an open fan).
+  bool all_around_edge_are(int r, int s, int t, int tissue) const {
+    int third[2], n = 0;
+    for (int x : m_.tets[t])
+      if (x != r && x != s) third[n++] = x;
+    for (int side = 0; side < 2; ++side) {
+      int cur = t, apex = third[side];
+      for (int step = 0; step < 64; ++step) {
+        const int nb = across(r, s, apex, cur);
+        if (nb < 0 || nb == t) break;
+        if (m_.tissue_ids[nb] != tissue) return false;
+        int w = -1;
+        for (int x : m_.tets[nb])
+          if (x != r && x != s && x != apex) w = x;
+        cur = nb;
+        apex = w;
+      }
+    }
+    return true;
   }
 
   void apply(const std::vector<int>& old, const std::vector<NewTet>& fresh, int tissue) {

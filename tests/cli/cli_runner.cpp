@@ -32,9 +32,4 @@ std::vector<std::string> files_below(const std::filesystem::path& dir) {
   return files;
 }
 
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), {});
-}
-
 }  // namespace tissuemesh::test

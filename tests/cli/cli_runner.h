@@ -1,6 +1,8 @@
 // Runs the tissuemesh program as a user would and captures what it prints.
 #pragma once
 
+#include "support/test_helpers.h"  // read_file
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -18,7 +20,5 @@ CliResult run_cli(const std::string& args, const std::filesystem::path& workdir)
 
 /// Every regular file below `dir` (relative paths), sorted; empty if `dir` does not exist.
 std::vector<std::string> files_below(const std::filesystem::path& dir);
-
-std::string read_file(const std::filesystem::path& path);
 
 }  // namespace tissuemesh::test

@@ -1,5 +1,6 @@
 #include "core/errors.h"
 #include "core/output_dir.h"
+#include "support/test_helpers.h"
 #include "support/test_paths.h"
 
 #include <gtest/gtest.h>
@@ -55,4 +56,25 @@ TEST(OutputDir, UnwritableTargetIsAnOutputErrorNamingIt) {
   } catch (const OutputError& e) {
     EXPECT_NE(std::string(e.what()).find("file"), std::string::npos);
   }
+}
+
+TEST(OutputDir, FailedCommitRestoresWhatWasThere) {
+  const fs::path target = test::scratch_dir();
+  std::ofstream(target / "a.txt") << "old";
+  fs::create_directories(target / "b.txt" / "blocker");  // a non-empty folder cannot be replaced by a file
+  std::ofstream(target / "b.txt" / "blocker" / "x") << "x";
+  {
+    OutputDir out(target);
+    std::ofstream(out.stage("a.txt")) << "new";
+    std::ofstream(out.stage("b.txt")) << "new";
+    EXPECT_THROW(out.commit(), OutputError);
+  }
+  EXPECT_EQ(test::read_file(target / "a.txt"), "old");  // put back
+  EXPECT_TRUE(fs::is_directory(target / "b.txt"));
+}
+
+TEST(OutputDir, StagedButUnwrittenFileIsAnError) {
+  OutputDir out(test::scratch_dir() / "out");
+  out.stage("never.txt");
+  EXPECT_THROW(out.commit(), OutputError);
 }

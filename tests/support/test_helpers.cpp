@@ -2,7 +2,14 @@
 
 #include "core/errors.h"
 
+#include <fstream>
+
 namespace tissuemesh::test {
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
 
 std::string input_error_of(const std::function<void()>& f) {
   try {

@@ -3,10 +3,14 @@
 
 #include "core/label_image.h"
 
+#include <filesystem>
 #include <functional>
 #include <string>
 
 namespace tissuemesh::test {
+
+/// Whole content of a file ("" if missing).
+std::string read_file(const std::filesystem::path& path);
 
 /// The message of the InputError `f` throws, or "no error".
 std::string input_error_of(const std::function<void()>& f);
