@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <array>
 #include <map>
 #include <set>
@@ -51,6 +53,25 @@ std::map<std::array<int, 3>, std::pair<int, int>> interface_faces(const TetMesh&
   return out;
 }
 
+// Number of face-connected pieces of each tissue (tissue id -> count).
+std::map<int, int> tissue_pieces(const TetMesh& m) {
+  std::vector<int> parent(m.tets.size());
+  for (std::size_t t = 0; t < parent.size(); ++t) parent[t] = static_cast<int>(t);
+  std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+  std::map<std::array<int, 3>, int> first;
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    for (int f = 0; f < 4; ++f) {
+      std::array<int, 3> k{m.tets[t][(f + 1) % 4], m.tets[t][(f + 2) % 4], m.tets[t][(f + 3) % 4]};
+      std::sort(k.begin(), k.end());
+      auto [it, fresh] = first.emplace(k, static_cast<int>(t));
+      if (!fresh && m.tissue_ids[it->second] == m.tissue_ids[t]) parent[find(it->second)] = find(static_cast<int>(t));
+    }
+  std::map<int, int> pieces;
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    if (find(static_cast<int>(t)) == static_cast<int>(t)) ++pieces[m.tissue_ids[t]];
+  return pieces;
+}
+
 }  // namespace
 
 TEST(SliverFlips, KeepInterfacesVolumesAndConformityAndRaiseQuality) {
@@ -81,9 +102,12 @@ TEST(SliverFlips, AreDeterministic) {
 TEST(SliverFlips, InterfaceFlipsMoveOnlyTheReportedWedgeVolume) {
   TetMesh inside_only = unrepaired_mesh(), across = unrepaired_mesh();
   const QualityReport before = compute_quality(across);
+  const auto pieces_before = tissue_pieces(across);
   flip_slivers(inside_only, 15.0, false);
   const SliverFlipResult r = flip_slivers(across, 15.0, true);
+  EXPECT_GT(r.interface_flips, 0u);
   EXPECT_TRUE(check_conformity(across).conforming());
+  EXPECT_EQ(tissue_pieces(across), pieces_before);  // no tissue split (e.g. pinched at an edge)
   const QualityReport after = compute_quality(across);
   // The total is unchanged; each tissue changes by at most the wedge volume moved.
   EXPECT_NEAR(after.total.volume_mm3, before.total.volume_mm3, test::kRelativeRoundoff * before.total.volume_mm3);
@@ -91,6 +115,23 @@ TEST(SliverFlips, InterfaceFlipsMoveOnlyTheReportedWedgeVolume) {
     EXPECT_LE(std::abs(after.tissues[t].volume_mm3 - before.tissues[t].volume_mm3),
               r.volume_relabelled_mm3 + test::kRelativeRoundoff * before.total.volume_mm3);
   EXPECT_LE(after.total.tets_below_10deg, compute_quality(inside_only).total.tets_below_10deg);
+}
+
+TEST(BoundarySlivers, KeepAnEdgeThatIsAlreadyOnTheBoundary) {
+  // An open fan of three tets around edge cd (on the boundary). The middle tet is a 5-degree
+  // sliver whose two outer faces meet at a1-a2; removing it would give cd four boundary faces.
+  TetMesh m;
+  auto at = [](double deg) { return Eigen::Vector3d(std::cos(deg * M_PI / 180), std::sin(deg * M_PI / 180), 0.5); };
+  m.points = {{0, 0, 0}, {0, 0, 1}, at(0), at(80), at(85), at(180)};
+  m.tets = {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 5}};
+  for (auto& t : m.tets)
+    if (signed_tet_volume(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]) < 0) std::swap(t[2], t[3]);
+  m.tissue_ids = {1, 1, 1};
+  m.tissue_names = {"a"};
+  ASSERT_LT(compute_quality(m).total.min_dihedral_deg, 10.0);
+  const BoundarySliverRemoval r = remove_boundary_slivers(m, 10.0);
+  EXPECT_EQ(check_conformity(m).nonmanifold_boundary_edges, 0u);
+  EXPECT_EQ(r.tets_removed, 0u);
 }
 
 TEST(BoundarySlivers, RemoveOnlyFlatOuterCaps) {
