@@ -263,8 +263,12 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
                                        "may differ between runs (raise the limit or lower sliver_bound_deg)");
   };
   {
-    auto stage = progress.stage("seed components");
+    auto stage = progress.stage("protect border features");
     CGAL::Mesh_3::internal::init_c3t3_with_features(c3t3, domain, criteria);
+    stage.note(std::to_string(c3t3.triangulation().number_of_vertices()) + " protecting balls");
+  }
+  {
+    auto stage = progress.stage("seed components");
     result.initial_points = seed_components(c3t3, domain, ids, comps, ids.spacing);
     stage.note(std::to_string(result.initial_points) + " initial surface points");
   }
