@@ -28,4 +28,9 @@ constexpr double kSmallImageVolumeRel = 0.05;
 /// round-off remains; 1e-6 relative.
 constexpr double kFlatInterfaceVolumeRel = 1e-6;
 
+/// Central finite differences of smooth functions with step 1e-6 at unit-scale arguments:
+/// truncation ~1e-12 and round-off ~1e-10 relative to the function scale; 1e-7 relative to the
+/// size of the derivative separates a right formula from a wrong one (errors are O(1) then).
+constexpr double kFiniteDifferenceRel = 1e-7;
+
 }  // namespace tissuemesh::test

@@ -1,0 +1,38 @@
+// HyperelasticLaw: the one interface the solver (issue #4) and the writers (issue #3) share.
+//
+// A law is a strain-energy density W(C) per unit reference volume of the right Cauchy-Green tensor
+// C = F^T F (symmetric positive definite). It gives the second Piola-Kirchhoff stress S = 2 dW/dC
+// and the material tangent CC = 4 d2W/dC dC = 2 dS/dC, a symmetric 4th-order tensor returned in
+// Voigt form with the order (11, 22, 33, 12, 23, 13) and no factor 2 on the shear entries
+// (CC_voigt(a, b) = CC_ijkl for a = (ij), b = (kl)). Stresses are in the unit of the parameters.
+// Laws do not throw on a non-positive det C: callers (the solver) must check J > 0 first.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+
+namespace tissuemesh {
+
+using Tangent6 = Eigen::Matrix<double, 6, 6>;
+
+class HyperelasticLaw {
+ public:
+  virtual ~HyperelasticLaw() = default;
+  /// e.g. "compressible neo-Hookean (ln J)".
+  virtual std::string name() const = 0;
+  virtual double energy(const Eigen::Matrix3d& C) const = 0;
+  virtual Eigen::Matrix3d pk2(const Eigen::Matrix3d& C) const = 0;
+  virtual Tangent6 tangent(const Eigen::Matrix3d& C) const = 0;
+};
+
+/// W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2 (FEBio `neo-Hookean`, SOFA `NeoHookean`).
+std::unique_ptr<HyperelasticLaw> make_compressible_neo_hookean(double mu, double lambda);
+
+/// Uncoupled Mooney-Rivlin W = C10 (I1bar - 3) + C01 (I2bar - 3) + K/2 (J - 1)^2
+/// (Abaqus/CalculiX `MOONEY-RIVLIN` with D1 = 2/K; `NEO HOOKE` when C01 = 0; FEBio `Mooney-Rivlin`
+/// with pressure_model Abaqus). I1bar = J^(-2/3) I1, I2bar = J^(-4/3) I2.
+std::unique_ptr<HyperelasticLaw> make_uncoupled_mooney_rivlin(double C10, double C01, double K);
+
+}  // namespace tissuemesh
