@@ -79,12 +79,6 @@ int TissueTable::tissue_of_label(std::int32_t label) const {
   return it == label_to_tissue_.end() ? -1 : it->second;
 }
 
-int TissueTable::id_of(const std::string& name) const {
-  for (const Tissue& t : tissues_)
-    if (t.name == name) return t.id;
-  return -1;
-}
-
 void TissueTable::check_against(const std::map<std::int32_t, std::size_t>& counts,
                                 const std::string& what) const {
   for (const auto& [label, count] : counts) {

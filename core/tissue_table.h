@@ -41,8 +41,6 @@ class TissueTable {
   std::vector<std::string> names() const;
   /// Tissue id (1..N) of a label, 0 if ignored, -1 if unknown.
   int tissue_of_label(std::int32_t label) const;
-  /// Tissue id of a name, -1 if absent.
-  int id_of(const std::string& name) const;
 
   /// Throws InputError if a label in `counts` is unknown or a tissue has no voxels; `what` names
   /// the image in the message.

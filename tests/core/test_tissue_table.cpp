@@ -24,7 +24,6 @@ TEST(TissueTable, SeveralLabelsMapToOneTissueInListOrder) {
   EXPECT_EQ(t.tissue_of_label(7), 2);
   EXPECT_EQ(t.tissue_of_label(6), 0);
   EXPECT_EQ(t.tissue_of_label(9), -1);
-  EXPECT_EQ(t.id_of("fgt"), 2);
   EXPECT_EQ(t.names(), (std::vector<std::string>{"fat", "fgt"}));
 }
 
