@@ -39,6 +39,9 @@ class YamlMap {
   /// "<source>: <path.key>" for messages.
   std::string where(const std::string& key) const;
   const std::string& source() const { return source_; }
+  const std::string& path() const { return path_; }
+  /// "<source>: <path>: " — the prefix of a message about this map as a whole.
+  std::string here() const { return source_ + ": " + (path_.empty() ? std::string("(top level)") : path_) + ": "; }
 
   /// Throws InputError naming every unknown key and listing the known ones.
   void finish() const;

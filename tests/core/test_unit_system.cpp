@@ -1,5 +1,5 @@
 // Unit systems: the values of formats.md §4 and the weight-per-volume consistency of every system.
-#include "materials/unit_system.h"
+#include "core/unit_system.h"
 #include "support/test_helpers.h"
 #include "support/tolerances.h"
 

@@ -1,0 +1,261 @@
+#include "core/model_builder.h"
+
+#include "core/errors.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+namespace tissuemesh {
+
+namespace {
+
+// Corner pairs of the six tet10 edges in midside slot order 4..9 (core/model.h).
+constexpr int kEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
+
+// Sorted corner triple of a face: the key under which the two elements sharing it meet.
+std::array<int, 3> face_key(const Model& m, std::size_t e, int f) {
+  std::array<int, 3> k;
+  for (int i = 0; i < 3; ++i) k[i] = m.elements[e][face_corners(f)[i]];
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// Tissue id -> side membership (index 0 = outside).
+std::vector<char> side_mask(const Model& m, const InterfaceSide& side, const std::string& set_name) {
+  std::vector<char> mask(m.tissue_names.size() + 1, 0);
+  mask[0] = side.outside ? 1 : 0;
+  for (const std::string& name : side.tissues) {
+    auto it = std::find(m.tissue_names.begin(), m.tissue_names.end(), name);
+    if (it == m.tissue_names.end()) {
+      std::string known;
+      for (const std::string& t : m.tissue_names) known += (known.empty() ? "" : ", ") + t;
+      throw InputError("model: set '" + set_name + "': unknown tissue '" + name + "' (the mesh has " + known +
+                       ", and 'outside')");
+    }
+    mask[static_cast<std::size_t>(it - m.tissue_names.begin()) + 1] = 1;
+  }
+  return mask;
+}
+
+std::vector<std::array<int, 2>> faces_between(const Model& m, const InterfaceSide& a, const InterfaceSide& b,
+                                              const std::string& set_name) {
+  const std::vector<char> in_a = side_mask(m, a, set_name), in_b = side_mask(m, b, set_name);
+  // Pair every face with its neighbour across it (or none on the boundary).
+  std::map<std::array<int, 3>, std::array<int, 2>> first;
+  std::vector<std::array<int, 2>> neighbour(m.elements.size() * 4, {-1, -1});
+  for (std::size_t e = 0; e < m.elements.size(); ++e)
+    for (int f = 0; f < 4; ++f) {
+      auto [it, inserted] = first.emplace(face_key(m, e, f), std::array<int, 2>{static_cast<int>(e), f});
+      if (!inserted) {
+        neighbour[e * 4 + f] = it->second;
+        neighbour[static_cast<std::size_t>(it->second[0]) * 4 + it->second[1]] = {static_cast<int>(e), f};
+      }
+    }
+  // Keep the face on side A's element so that its outward normal points from A to B.
+  std::vector<std::array<int, 2>> out;
+  for (std::size_t e = 0; e < m.elements.size(); ++e) {
+    if (!in_a[m.tissue_ids[e]]) continue;
+    for (int f = 0; f < 4; ++f) {
+      const auto& nb = neighbour[e * 4 + f];
+      const int other = nb[0] < 0 ? 0 : m.tissue_ids[nb[0]];
+      if (other == m.tissue_ids[e] && nb[0] >= 0) continue;  // inside one tissue: no interface
+      if (in_b[other]) out.push_back({static_cast<int>(e), f});
+    }
+  }
+  return out;
+}
+
+Eigen::Vector3d face_area_normal(const Model& m, const std::array<int, 2>& face) {
+  const auto& c = face_corners(face[1]);
+  const auto& el = m.elements[face[0]];
+  const Eigen::Vector3d &p0 = m.nodes[el[c[0]]], &p1 = m.nodes[el[c[1]]], &p2 = m.nodes[el[c[2]]];
+  return 0.5 * (p1 - p0).cross(p2 - p0);
+}
+
+std::vector<std::array<int, 2>> select_faces(const Model& m, const SetSelection& s, const std::string& name) {
+  if (s.kind == SetSelection::Kind::Between) return faces_between(m, s.side_a, s.side_b, name);
+  // Plane / box: boundary faces whose corners all lie in the selection.
+  InterfaceSide all, outside;
+  all.tissues = m.tissue_names;
+  outside.outside = true;
+  std::vector<std::array<int, 2>> out;
+  for (const auto& face : faces_between(m, all, outside, name)) {
+    bool inside = true;
+    for (int c : face_corners(face[1])) {
+      const Eigen::Vector3d& p = m.nodes[m.elements[face[0]][c]];
+      if (s.kind == SetSelection::Kind::Plane)
+        inside = inside && std::abs((p - s.plane_point_mm).dot(s.plane_normal)) <= s.plane_tolerance_mm;
+      else
+        inside = inside && (p.array() >= s.box_min_mm.array()).all() && (p.array() <= s.box_max_mm.array()).all();
+    }
+    if (inside) out.push_back(face);
+  }
+  return out;
+}
+
+std::vector<int> select_corner_nodes(const Model& m, const SetSelection& s,
+                                     const std::vector<std::array<int, 2>>& faces) {
+  std::set<int> nodes;
+  if (s.kind == SetSelection::Kind::Between) {
+    for (const auto& f : faces)
+      for (int c : face_corners(f[1])) nodes.insert(m.elements[f[0]][c]);
+  } else {
+    for (int i = 0; i < m.num_corner_nodes; ++i) {
+      const Eigen::Vector3d& p = m.nodes[i];
+      const bool in = s.kind == SetSelection::Kind::Plane
+                          ? std::abs((p - s.plane_point_mm).dot(s.plane_normal)) <= s.plane_tolerance_mm
+                          : (p.array() >= s.box_min_mm.array()).all() && (p.array() <= s.box_max_mm.array()).all();
+      if (in) nodes.insert(i);
+    }
+  }
+  return {nodes.begin(), nodes.end()};
+}
+
+NodeSet make_node_set(const Model& m, const NodeSetSettings& settings) {
+  NodeSet set;
+  set.name = settings.name;
+  set.constraint = settings.constraint;
+  set.selection = settings.selection.describe();
+  const auto faces = select_faces(m, settings.selection, settings.name);
+  set.nodes = select_corner_nodes(m, settings.selection, faces);
+  if (set.nodes.empty())
+    throw InputError("model: node set '" + set.name + "' (" + set.selection + ") selects no node");
+  if (set.constraint == Constraint::Sliding) {
+    if (settings.selection.kind == SetSelection::Kind::Box)
+      throw InputError("model: node set '" + set.name + "': a box selection cannot slide (no surface normal); "
+                       "use `between` or `plane`");
+    std::unordered_map<int, Eigen::Vector3d> sum;
+    if (settings.selection.kind == SetSelection::Kind::Plane) {
+      for (int v : set.nodes) sum[v] = settings.selection.plane_normal;
+    } else {
+      for (const auto& f : faces)
+        for (int c : face_corners(f[1])) {
+          auto [it, ok] = sum.emplace(m.elements[f[0]][c], Eigen::Vector3d::Zero());
+          it->second += face_area_normal(m, f);
+        }
+    }
+    for (int v : set.nodes) set.normals.push_back(sum.at(v).normalized());
+  }
+  return set;
+}
+
+// tet10: a midside node joins a node set when both ends of its edge are in it (the normal of a
+// sliding set is the mean of the two ends').
+void extend_to_midsides(const Model& m, NodeSet& set) {
+  std::unordered_map<int, std::size_t> pos;
+  for (std::size_t i = 0; i < set.nodes.size(); ++i) pos[set.nodes[i]] = i;
+  std::map<int, Eigen::Vector3d> added;
+  for (const auto& el : m.elements)
+    for (int k = 0; k < 6; ++k) {
+      auto a = pos.find(el[kEdges[k][0]]), b = pos.find(el[kEdges[k][1]]);
+      if (a == pos.end() || b == pos.end()) continue;
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      if (set.constraint == Constraint::Sliding) n = (set.normals[a->second] + set.normals[b->second]).normalized();
+      added.emplace(el[4 + k], n);
+    }
+  for (const auto& [v, n] : added) {
+    set.nodes.push_back(v);
+    if (set.constraint == Constraint::Sliding) set.normals.push_back(n);
+  }
+  // Keep nodes sorted (midside indices are all larger than corner indices, and `added` is sorted).
+}
+
+// A node both fixed and sliding is fixed: writing both would over-constrain it (CalculiX refuses
+// an *EQUATION on a node whose degrees of freedom are all fixed).
+void drop_fixed_from_sliding(Model& m) {
+  std::set<int> fixed;
+  for (const NodeSet& s : m.node_sets)
+    if (s.constraint == Constraint::Fixed) fixed.insert(s.nodes.begin(), s.nodes.end());
+  for (NodeSet& s : m.node_sets) {
+    if (s.constraint != Constraint::Sliding) continue;
+    NodeSet kept = s;
+    kept.nodes.clear();
+    kept.normals.clear();
+    for (std::size_t i = 0; i < s.nodes.size(); ++i)
+      if (!fixed.count(s.nodes[i])) {
+        kept.nodes.push_back(s.nodes[i]);
+        kept.normals.push_back(s.normals[i]);
+      }
+    if (kept.nodes.empty())
+      throw InputError("model: sliding node set '" + s.name + "' (" + s.selection + ") lies entirely on fixed nodes");
+    s = std::move(kept);
+  }
+}
+
+}  // namespace
+
+void make_quadratic(Model& model) {
+  if (model.order == ElementOrder::Quadratic) return;
+  std::unordered_map<std::uint64_t, int> midside;
+  for (auto& el : model.elements)
+    for (int k = 0; k < 6; ++k) {
+      const int a = el[kEdges[k][0]], b = el[kEdges[k][1]];
+      auto [it, inserted] = midside.emplace(edge_key(a, b), static_cast<int>(model.nodes.size()));
+      if (inserted) model.nodes.push_back(0.5 * (model.nodes[a] + model.nodes[b]));
+      el[4 + k] = it->second;
+    }
+  model.order = ElementOrder::Quadratic;
+}
+
+std::vector<std::array<int, 2>> interface_faces(const Model& model, const InterfaceSide& a, const InterfaceSide& b) {
+  return faces_between(model, a, b, "<interface>");
+}
+
+Model build_model(const TetMesh& mesh, const ModelSettings& settings,
+                  const std::map<std::string, MaterialSpec>& materials, const std::string& materials_source) {
+  mesh.validate("mesh");
+  Model m;
+  m.nodes = mesh.points;
+  m.num_corner_nodes = static_cast<int>(mesh.points.size());
+  // Elements grouped by tissue (stable within a tissue): every format then numbers them the same
+  // way (FEBio needs one contiguous block per tissue, Abaqus/CalculiX ids follow the model).
+  std::vector<std::size_t> order(mesh.tets.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return mesh.tissue_ids[a] < mesh.tissue_ids[b]; });
+  m.elements.reserve(mesh.tets.size());
+  for (std::size_t i : order) {
+    std::array<int, 10> el;
+    el.fill(-1);
+    std::copy(mesh.tets[i].begin(), mesh.tets[i].end(), el.begin());
+    m.elements.push_back(el);
+    m.tissue_ids.push_back(mesh.tissue_ids[i]);
+  }
+  m.tissue_names = mesh.tissue_names;
+  for (const std::string& name : m.tissue_names) {
+    auto it = materials.find(name);
+    if (it == materials.end())
+      throw InputError(materials_source + ": materials: tissue '" + name +
+                       "' of the mesh has no material (add `materials: " + name + ": {...}`)");
+    m.materials.push_back(it->second);
+  }
+  for (const NodeSetSettings& s : settings.node_sets) m.node_sets.push_back(make_node_set(m, s));
+  for (const FaceSetSettings& s : settings.face_sets) {
+    FaceSet set{s.name, select_faces(m, s.selection, s.name), s.selection.describe()};
+    if (set.faces.empty())
+      throw InputError("model: face set '" + set.name + "' (" + set.selection + ") selects no face");
+    m.face_sets.push_back(std::move(set));
+  }
+  m.gravity.acceleration_m_s2 = settings.gravity_acceleration();
+  m.gravity.name = settings.gravity_direction;
+  m.units = settings.units;
+  m.analysis = settings.analysis;
+  if (settings.element == ElementOrder::Quadratic) {
+    make_quadratic(m);
+    for (NodeSet& s : m.node_sets) extend_to_midsides(m, s);
+  }
+  drop_fixed_from_sliding(m);
+  validate_model(m);
+  return m;
+}
+
+}  // namespace tissuemesh

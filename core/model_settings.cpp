@@ -1,0 +1,301 @@
+#include "core/model_settings.h"
+
+#include "core/errors.h"
+#include "core/quantity.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace tissuemesh {
+
+namespace {
+
+Eigen::Vector3d vector3(YamlMap& map, const std::string& key, const Eigen::Vector3d& fallback) {
+  if (!map.has(key)) return fallback;
+  YAML::Node node = map.raw(key);
+  if (!node.IsSequence() || node.size() != 3)
+    throw InputError(map.where(key) + ": expected a list of 3 numbers [x, y, z]");
+  Eigen::Vector3d v;
+  for (int i = 0; i < 3; ++i) {
+    try {
+      v[i] = node[i].as<double>();
+    } catch (const YAML::Exception&) {
+      throw InputError(map.where(key) + ": expected a list of 3 numbers, got '" + YAML::Dump(node) + "'");
+    }
+  }
+  if (!v.allFinite()) throw InputError(map.where(key) + ": values must be finite");
+  return v;
+}
+
+InterfaceSide parse_side(const YAML::Node& node, const std::string& where) {
+  InterfaceSide side;
+  auto add = [&](const YAML::Node& n) {
+    if (!n.IsScalar()) throw InputError(where + ": expected a tissue name or 'outside'");
+    if (n.Scalar() == "outside")
+      side.outside = true;
+    else
+      side.tissues.push_back(n.Scalar());
+  };
+  if (node.IsSequence())
+    for (const YAML::Node& n : node) add(n);
+  else
+    add(node);
+  if (side.tissues.empty() && !side.outside) throw InputError(where + ": an interface side names no tissue");
+  return side;
+}
+
+SetSelection parse_selection(YamlMap& entry) {
+  SetSelection s;
+  int given = 0;
+  if (entry.has("between")) {
+    ++given;
+    s.kind = SetSelection::Kind::Between;
+    YAML::Node sides = entry.raw("between");
+    if (!sides.IsSequence() || sides.size() != 2)
+      throw InputError(entry.where("between") + ": expected two sides [A, B], each a tissue name, a list of "
+                                                "names, or 'outside'");
+    s.side_a = parse_side(sides[0], entry.where("between"));
+    s.side_b = parse_side(sides[1], entry.where("between"));
+  }
+  if (entry.has("plane")) {
+    ++given;
+    s.kind = SetSelection::Kind::Plane;
+    YamlMap plane = entry.map("plane");
+    s.plane_point_mm = vector3(plane, "point_mm", s.plane_point_mm);
+    const Eigen::Vector3d n = vector3(plane, "normal", s.plane_normal);
+    if (!(n.norm() > 0)) throw InputError(plane.where("normal") + ": must not be the zero vector");
+    s.plane_normal = n.normalized();
+    s.plane_tolerance_mm = plane.positive("tolerance_mm", s.plane_tolerance_mm);
+    plane.finish();
+  }
+  if (entry.has("box_mm")) {
+    ++given;
+    s.kind = SetSelection::Kind::Box;
+    YAML::Node box = entry.raw("box_mm");
+    if (!box.IsSequence() || box.size() != 6)
+      throw InputError(entry.where("box_mm") + ": expected [xmin, ymin, zmin, xmax, ymax, zmax]");
+    for (int i = 0; i < 3; ++i) {
+      s.box_min_mm[i] = box[i].as<double>();
+      s.box_max_mm[i] = box[i + 3].as<double>();
+    }
+    if (!(s.box_min_mm.array() <= s.box_max_mm.array()).all())
+      throw InputError(entry.where("box_mm") + ": min must not exceed max");
+  }
+  if (given != 1)
+    throw InputError(entry.here() + "give exactly one of `between`, `plane`, `box_mm` (got " +
+                     std::to_string(given) + ")");
+  return s;
+}
+
+void selection_to_yaml(const SetSelection& s, YAML::Emitter& out) {
+  auto side = [&](const InterfaceSide& x) {
+    if (x.tissues.size() == 1 && !x.outside)
+      out << x.tissues.front();
+    else if (x.tissues.empty())
+      out << "outside";
+    else {
+      out << YAML::Flow << YAML::BeginSeq;
+      for (const auto& t : x.tissues) out << t;
+      if (x.outside) out << "outside";
+      out << YAML::EndSeq;
+    }
+  };
+  auto vec = [&](const Eigen::Vector3d& v) {
+    out << YAML::Flow << YAML::BeginSeq << v[0] << v[1] << v[2] << YAML::EndSeq;
+  };
+  switch (s.kind) {
+    case SetSelection::Kind::Between:
+      out << YAML::Key << "between" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      side(s.side_a);
+      side(s.side_b);
+      out << YAML::EndSeq;
+      break;
+    case SetSelection::Kind::Plane:
+      out << YAML::Key << "plane" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "point_mm"
+          << YAML::Value;
+      vec(s.plane_point_mm);
+      out << YAML::Key << "normal" << YAML::Value;
+      vec(s.plane_normal);
+      out << YAML::Key << "tolerance_mm" << YAML::Value << s.plane_tolerance_mm << YAML::EndMap;
+      break;
+    case SetSelection::Kind::Box:
+      out << YAML::Key << "box_mm" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (int i = 0; i < 3; ++i) out << s.box_min_mm[i];
+      for (int i = 0; i < 3; ++i) out << s.box_max_mm[i];
+      out << YAML::EndSeq;
+      break;
+  }
+}
+
+std::string sides_text(const InterfaceSide& x) {
+  std::string out;
+  for (const auto& t : x.tissues) out += (out.empty() ? "" : ",") + t;
+  if (x.outside) out += (out.empty() ? "" : ",") + std::string("outside");
+  return out;
+}
+
+}  // namespace
+
+std::string SetSelection::describe() const {
+  std::ostringstream s;
+  switch (kind) {
+    case Kind::Between: s << "interface " << sides_text(side_a) << "|" << sides_text(side_b); break;
+    case Kind::Plane:
+      s << "plane through (" << plane_point_mm.transpose() << ") mm, normal (" << plane_normal.transpose()
+        << "), tolerance " << plane_tolerance_mm << " mm";
+      break;
+    case Kind::Box: s << "box (" << box_min_mm.transpose() << ")-(" << box_max_mm.transpose() << ") mm"; break;
+  }
+  return s.str();
+}
+
+ModelSettings ModelSettings::phantom_default() {
+  ModelSettings s;
+  NodeSetSettings wall;
+  wall.name = "chest_wall";
+  wall.selection.side_a.tissues = {"muscle"};
+  wall.selection.side_b.outside = true;
+  s.node_sets.push_back(wall);
+  FaceSetSettings skin;
+  skin.name = "skin_surface";
+  skin.selection.side_a.tissues = {"skin"};
+  skin.selection.side_b.outside = true;
+  s.face_sets.push_back(skin);
+  return s;
+}
+
+ModelSettings ModelSettings::from_yaml(YamlMap& map) {
+  ModelSettings s;
+  s.units = parse_unit_system(map.text("units", unit_system_name(s.units)));
+  const std::string element = map.text("element", "tet4");
+  if (element == "tet4")
+    s.element = ElementOrder::Linear;
+  else if (element == "tet10")
+    s.element = ElementOrder::Quadratic;
+  else
+    throw InputError(map.where("element") + ": unknown element '" + element + "' (tet4 or tet10)");
+
+  YAML::Node sets = map.raw("node_sets");
+  if (sets.IsDefined() && !sets.IsNull()) {
+    if (!sets.IsSequence()) throw InputError(map.where("node_sets") + ": expected a list");
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+      YamlMap entry(sets[i], "model.node_sets[" + std::to_string(i) + "]", map.source());
+      NodeSetSettings n;
+      n.name = entry.required_text("name");
+      n.selection = parse_selection(entry);
+      const std::string c = entry.text("constraint", "fixed");
+      if (c == "fixed")
+        n.constraint = Constraint::Fixed;
+      else if (c == "sliding")
+        n.constraint = Constraint::Sliding;
+      else
+        throw InputError(entry.where("constraint") + ": unknown constraint '" + c + "' (fixed or sliding)");
+      entry.finish();
+      s.node_sets.push_back(n);
+    }
+  }
+  YAML::Node faces = map.raw("face_sets");
+  if (faces.IsDefined() && !faces.IsNull()) {
+    if (!faces.IsSequence()) throw InputError(map.where("face_sets") + ": expected a list");
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      YamlMap entry(faces[i], "model.face_sets[" + std::to_string(i) + "]", map.source());
+      FaceSetSettings f;
+      f.name = entry.required_text("name");
+      f.selection = parse_selection(entry);
+      entry.finish();
+      s.face_sets.push_back(f);
+    }
+  }
+
+  YamlMap gravity = map.map("gravity");
+  if (gravity.has("direction")) {
+    YAML::Node dir = gravity.raw("direction");
+    if (dir.IsSequence()) {
+      const Eigen::Vector3d v = vector3(gravity, "direction", Eigen::Vector3d::Zero());
+      if (!(v.norm() > 0)) throw InputError(gravity.where("direction") + ": must not be the zero vector");
+      s.gravity_direction = "vector";
+      s.gravity_vector = v.normalized();
+    } else {
+      s.gravity_direction = dir.Scalar();
+      if (s.gravity_direction != "prone" && s.gravity_direction != "supine" && s.gravity_direction != "none")
+        throw InputError(gravity.where("direction") + ": unknown direction '" + s.gravity_direction +
+                         "' (prone: towards anterior, supine: towards posterior, none, or [x, y, z] in LPS)");
+    }
+  }
+  if (gravity.has("acceleration")) {
+    s.gravity_m_s2 = parse_quantity(gravity.text("acceleration", ""), Dimension::Acceleration,
+                                    gravity.where("acceleration"));
+    if (!(s.gravity_m_s2 >= 0.0 && s.gravity_m_s2 <= 100.0))
+      throw InputError(gravity.where("acceleration") + ": " + std::to_string(s.gravity_m_s2) +
+                       " m/s^2 is outside [0, 100] m/s^2 (Earth: 9.81 m/s^2; check the unit)");
+  }
+  gravity.finish();
+
+  YamlMap a = map.map("analysis");
+  AnalysisSettings& an = s.analysis;
+  an.load_steps = a.integer("load_steps", an.load_steps);
+  an.max_load_steps = a.integer("max_load_steps", an.max_load_steps);
+  an.min_step_fraction = a.in_range("min_step_fraction", an.min_step_fraction, 1e-12, 1.0);
+  an.max_newton_iterations = a.integer("max_newton_iterations", an.max_newton_iterations);
+  an.displacement_tolerance = a.in_range("displacement_tolerance", an.displacement_tolerance, 1e-16, 1.0);
+  an.energy_tolerance = a.in_range("energy_tolerance", an.energy_tolerance, 0.0, 1.0);
+  an.residual_tolerance = a.in_range("residual_tolerance", an.residual_tolerance, 0.0, 1.0);
+  if (an.load_steps < 1 || an.load_steps > 10000)
+    throw InputError(a.where("load_steps") + ": must be in [1, 10000]");
+  if (an.max_load_steps < an.load_steps)
+    throw InputError(a.where("max_load_steps") + ": must be >= load_steps (" + std::to_string(an.load_steps) + ")");
+  if (an.max_newton_iterations < 1) throw InputError(a.where("max_newton_iterations") + ": must be >= 1");
+  a.finish();
+  map.finish();
+  return s;
+}
+
+void ModelSettings::to_yaml(YAML::Emitter& out) const {
+  out << YAML::BeginMap;
+  out << YAML::Key << "units" << YAML::Value << unit_system_name(units);
+  out << YAML::Key << "element" << YAML::Value << (element == ElementOrder::Linear ? "tet4" : "tet10");
+  out << YAML::Key << "node_sets" << YAML::Value << YAML::BeginSeq;
+  for (const NodeSetSettings& n : node_sets) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << n.name;
+    selection_to_yaml(n.selection, out);
+    out << YAML::Key << "constraint" << YAML::Value << (n.constraint == Constraint::Fixed ? "fixed" : "sliding")
+        << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "face_sets" << YAML::Value << YAML::BeginSeq;
+  for (const FaceSetSettings& f : face_sets) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << f.name;
+    selection_to_yaml(f.selection, out);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "gravity" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "direction"
+      << YAML::Value;
+  if (gravity_direction == "vector")
+    out << YAML::Flow << YAML::BeginSeq << gravity_vector[0] << gravity_vector[1] << gravity_vector[2] << YAML::EndSeq;
+  else
+    out << gravity_direction;
+  out << YAML::Key << "acceleration" << YAML::Value << format_quantity(gravity_m_s2, Dimension::Acceleration)
+      << YAML::EndMap;
+  const AnalysisSettings& a = analysis;
+  out << YAML::Key << "analysis" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "load_steps" << YAML::Value << a.load_steps;
+  out << YAML::Key << "max_load_steps" << YAML::Value << a.max_load_steps;
+  out << YAML::Key << "min_step_fraction" << YAML::Value << a.min_step_fraction;
+  out << YAML::Key << "max_newton_iterations" << YAML::Value << a.max_newton_iterations;
+  out << YAML::Key << "displacement_tolerance" << YAML::Value << a.displacement_tolerance;
+  out << YAML::Key << "energy_tolerance" << YAML::Value << a.energy_tolerance;
+  out << YAML::Key << "residual_tolerance" << YAML::Value << a.residual_tolerance;
+  out << YAML::EndMap;
+  out << YAML::EndMap;
+}
+
+Eigen::Vector3d ModelSettings::gravity_acceleration() const {
+  // LPS: +y is posterior. Prone (face down): gravity pulls towards anterior = -y.
+  if (gravity_direction == "prone") return {0.0, -gravity_m_s2, 0.0};
+  if (gravity_direction == "supine") return {0.0, gravity_m_s2, 0.0};
+  if (gravity_direction == "none") return Eigen::Vector3d::Zero();
+  return gravity_m_s2 * gravity_vector;
+}
+
+}  // namespace tissuemesh
