@@ -1,5 +1,5 @@
 // ElasticConstants: the small-strain moduli of an isotropic material, given in any usual form and
-// converted in this one place (issue #3 builds the hyperelastic laws on it).
+// converted in this one place.
 //
 // Stored: shear modulus mu and bulk modulus K (both > 0), in the caller's stress unit (Pa, kPa or
 // MPa: conversions are unit-free). Everything else is derived (biomech.md §1.1):

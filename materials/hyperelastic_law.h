@@ -12,6 +12,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace tissuemesh {
 
@@ -34,5 +35,11 @@ std::unique_ptr<HyperelasticLaw> make_compressible_neo_hookean(double mu, double
 /// (Abaqus/CalculiX `MOONEY-RIVLIN` with D1 = 2/K; `NEO HOOKE` when C01 = 0; FEBio `Mooney-Rivlin`
 /// with pressure_model Abaqus). I1bar = J^(-2/3) I1, I2bar = J^(-4/3) I2.
 std::unique_ptr<HyperelasticLaw> make_uncoupled_mooney_rivlin(double C10, double C01, double K);
+
+/// Uncoupled Ogden W = sum_i 2 mu_i / alpha_i^2 (λ̄1^alpha_i + λ̄2^alpha_i + λ̄3^alpha_i - 3)
+/// + K/2 (J - 1)^2 with 1-3 terms (Abaqus/CalculiX `OGDEN, N=n` with D1 = 2/K; FEBio `Ogden`
+/// with c_i = 2 mu_i, m_i = alpha_i, pressure_model Abaqus). Initial shear modulus sum mu_i.
+std::unique_ptr<HyperelasticLaw> make_uncoupled_ogden(const std::vector<double>& mu,
+                                                      const std::vector<double>& alpha, double K);
 
 }  // namespace tissuemesh
