@@ -14,6 +14,8 @@ PACKAGES=(
   libcli11-dev                                  # command-line parser
   nlohmann-json3-dev                            # JSON reports and run records
   zlib1g-dev                                    # gzip-compressed NIfTI / NRRD
+  libgmsh-dev                                   # Gmsh 4.8 SDK: .msh export
+  calculix-ccx                                  # CalculiX 2.20: runs the exported .inp in tests
   libgtest-dev libgmock-dev                     # test suites
 )
 

@@ -33,4 +33,25 @@ constexpr double kFlatInterfaceVolumeRel = 1e-6;
 /// size of the derivative separates a right formula from a wrong one (errors are O(1) then).
 constexpr double kFiniteDifferenceRel = 1e-7;
 
+/// Reference values quoted to 6-7 significant digits (biomech.md §3.1: e.g. 501.419 Pa, 0.914705):
+/// half a unit in the last quoted digit is at most 1.0e-6 relative in those tables (501.419 Pa
+/// +- 0.0005); 2e-6 covers that rounding plus the bisection and round-off of the computed value
+/// and still catches a formula slip in the fifth digit.
+constexpr double kQuotedSixDigitsRel = 2e-6;
+
+/// CalculiX (ccx 2.20) accepts a Newton iterate when the largest residual force is at most
+/// R_n^alpha = 0.005 of the average nodal force (ccx manual "Convergence criteria"; ctrl[] default
+/// 0.005 in ccx's main program, *CONTROLS PARAMETERS=FIELD). Weight itself is exact (GRAV acts on the
+/// reference mass, which hyperelastic deformation keeps), so what separates the total support
+/// reaction from the weight is the out-of-balance force ccx accepted: 0.005 of the load is the
+/// relative size ccx's criterion allows (it bounds the largest nodal residual; residuals of a
+/// converged iterate do not add up coherently). Measured on the block models: 1e-14 to 1e-11.
+constexpr double kCalculixEquilibriumRel = 5e-3;
+
+/// Values in a CalculiX .dat are printed as 1p,e13.6: 7 significant digits, i.e. a rounding of at
+/// most 5e-7 relative per value. 1e-6 relative to the summed magnitudes covers sums and
+/// differences of such values (the TOTALS line against the sum of the rows, n . u on a sliding
+/// node) with a factor 2 of margin.
+constexpr double kCalculixPrintRel = 1e-6;
+
 }  // namespace tissuemesh::test

@@ -1,0 +1,122 @@
+// The model as a VTU (VTK XML unstructured grid) for ParaView; conventions of core/vtu_io.
+#include "fe_export/vtu/write_model_vtu.h"
+
+#include "core/errors.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkCommand.h>
+#include <vtkDoubleArray.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <functional>
+
+namespace tissuemesh {
+
+namespace {
+
+// Observing ErrorEvent keeps VTK from printing its error (the library never prints); the
+// failure is reported through OutputError instead.
+class ErrorCapture : public vtkCommand {
+ public:
+  static ErrorCapture* New() { return new ErrorCapture; }
+  void Execute(vtkObject*, unsigned long, void*) override { failed = true; }
+  bool failed = false;
+};
+
+vtkNew<vtkStringArray> string_field(const char* name, const std::vector<std::string>& values) {
+  vtkNew<vtkStringArray> a;
+  a->SetName(name);
+  a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), values[i]);
+  return a;
+}
+
+// One Float64 cell array holding a per-tissue value (SI) for every element.
+vtkNew<vtkDoubleArray> tissue_cell_array(const Model& model, const char* name,
+                                         const std::function<double(const MaterialSpec&)>& value) {
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfValues(static_cast<vtkIdType>(model.elements.size()));
+  for (std::size_t e = 0; e < model.elements.size(); ++e)
+    a->SetValue(static_cast<vtkIdType>(e), value(model.materials[static_cast<std::size_t>(model.tissue_ids[e] - 1)]));
+  return a;
+}
+
+}  // namespace
+
+void write_model_vtu(const Model& model, const std::string& path) {
+  const std::size_t n_nodes = model.nodes.size();
+  const std::size_t n_el = model.elements.size();
+  const int npe = model.nodes_per_element();
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(n_nodes));
+  for (std::size_t i = 0; i < n_nodes; ++i) points->SetPoint(static_cast<vtkIdType>(i), model.nodes[i].data());
+
+  // VTK_QUADRATIC_TETRA's midside order (0,1) (1,2) (2,0) (0,3) (1,3) (2,3) is the Model's.
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(n_el + 1));
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(npe * n_el));
+  for (std::size_t e = 0; e <= n_el; ++e) offsets->SetValue(static_cast<vtkIdType>(e), static_cast<vtkIdType>(npe * e));
+  for (std::size_t e = 0; e < n_el; ++e)
+    for (int k = 0; k < npe; ++k) connectivity->SetValue(static_cast<vtkIdType>(npe * e + k), model.elements[e][k]);
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(points);
+  grid->SetCells(model.order == ElementOrder::Linear ? VTK_TETRA : VTK_QUADRATIC_TETRA, cells);
+
+  vtkNew<vtkIntArray> ids;
+  ids->SetName("tissue_id");
+  ids->SetNumberOfValues(static_cast<vtkIdType>(n_el));
+  for (std::size_t e = 0; e < n_el; ++e) ids->SetValue(static_cast<vtkIdType>(e), model.tissue_ids[e]);
+  grid->GetCellData()->AddArray(ids);
+  grid->GetCellData()->SetActiveScalars("tissue_id");
+  grid->GetCellData()->AddArray(tissue_cell_array(model, "shear_modulus_Pa", [](const MaterialSpec& m) { return m.mu_Pa; }));
+  grid->GetCellData()->AddArray(tissue_cell_array(model, "bulk_modulus_Pa", [](const MaterialSpec& m) { return m.K_Pa; }));
+  grid->GetCellData()->AddArray(
+      tissue_cell_array(model, "density_kg_m3", [](const MaterialSpec& m) { return m.density_kg_m3; }));
+
+  for (const NodeSet& set : model.node_sets) {
+    vtkNew<vtkUnsignedCharArray> member;
+    member->SetName(("set_" + set.name).c_str());
+    member->SetNumberOfValues(static_cast<vtkIdType>(n_nodes));
+    member->FillValue(0);
+    for (int n : set.nodes) member->SetValue(n, 1);
+    grid->GetPointData()->AddArray(member);
+  }
+
+  std::vector<std::string> laws;
+  for (const MaterialSpec& m : model.materials) laws.push_back(material_law_name(m.law));
+  grid->GetFieldData()->AddArray(string_field("tissue_names", model.tissue_names));
+  grid->GetFieldData()->AddArray(string_field("material_laws", laws));
+  grid->GetFieldData()->AddArray(string_field("coordinate_system", {"LPS"}));
+  grid->GetFieldData()->AddArray(string_field("length_unit", {"mm"}));
+
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(grid);
+  writer->SetDataModeToAppended();
+  writer->SetCompressorTypeToZLib();
+  vtkNew<ErrorCapture> errors;
+  writer->AddObserver(vtkCommand::ErrorEvent, errors);
+  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);  // "returned failure" report
+  if (writer->Write() != 1 || errors->failed)
+    throw OutputError(path + ": cannot write VTU file (missing or read-only directory, or disk full?)");
+}
+
+}  // namespace tissuemesh

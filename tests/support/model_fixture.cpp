@@ -1,0 +1,112 @@
+#include "support/model_fixture.h"
+
+#include "core/model_builder.h"
+
+#include <algorithm>
+
+namespace tissuemesh::test {
+
+TetMesh block_mesh() {
+  constexpr int nx = 10, ny = 5, nz = 5;
+  constexpr double h = 2.0;
+  TetMesh mesh;
+  auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) mesh.points.emplace_back(h * i, h * j, h * k);
+  // Kuhn split: the 6 monotone paths from corner (0,0,0) to (1,1,1) through the cube.
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        for (const auto& p : perms) {
+          int c[3] = {i, j, k};
+          std::array<int, 4> t;
+          t[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[p[s]];
+            t[s + 1] = id(c[0], c[1], c[2]);
+          }
+          const auto& P = mesh.points;
+          if (signed_tet_volume(P[t[0]], P[t[1]], P[t[2]], P[t[3]]) < 0) std::swap(t[2], t[3]);
+          mesh.tets.push_back(t);
+          mesh.tissue_ids.push_back(i < 4 ? 1 : (i < 7 ? 2 : 3));
+        }
+  mesh.tissue_names = {"fat", "fgt", "tumor"};
+  return mesh;
+}
+
+std::map<std::string, MaterialSpec> block_materials(bool ogden_tumor) {
+  std::map<std::string, MaterialSpec> m;
+  MaterialSpec fat;
+  fat.law = MaterialLaw::NeoHookean;
+  fat.mu_Pa = 150;
+  fat.C10_Pa = 75;
+  fat.K_Pa = 50e3;
+  fat.density_kg_m3 = 950;
+  fat.source = "test fixture";
+  m["fat"] = fat;
+  MaterialSpec fgt;
+  fgt.law = MaterialLaw::MooneyRivlin;
+  fgt.C10_Pa = 100;
+  fgt.C01_Pa = 50;
+  fgt.mu_Pa = 300;
+  fgt.K_Pa = 60e3;
+  fgt.density_kg_m3 = 1040;
+  m["fgt"] = fgt;
+  MaterialSpec tumor;
+  if (ogden_tumor) {
+    tumor.law = MaterialLaw::Ogden;
+    tumor.ogden = {{700, 2.0}, {200, -2.0}};
+    tumor.mu_Pa = 900;
+  } else {
+    tumor.law = MaterialLaw::MooneyRivlin;
+    tumor.C10_Pa = 400;
+    tumor.C01_Pa = 50;
+    tumor.mu_Pa = 900;
+  }
+  tumor.K_Pa = 100e3;
+  tumor.density_kg_m3 = 1060;
+  m["tumor"] = tumor;
+  return m;
+}
+
+ModelSettings block_settings(const BlockModelOptions& options) {
+  ModelSettings s;
+  s.units = options.units;
+  s.element = options.order;
+  NodeSetSettings wall;
+  wall.name = "chest_wall";
+  wall.selection.kind = SetSelection::Kind::Plane;
+  wall.selection.plane_point_mm = {0, 10, 0};
+  wall.selection.plane_normal = {0, 1, 0};
+  wall.selection.plane_tolerance_mm = 1e-6;
+  wall.constraint = Constraint::Fixed;
+  s.node_sets.push_back(wall);
+  if (options.sliding_top) {
+    NodeSetSettings top;
+    top.name = "top";
+    top.selection.kind = SetSelection::Kind::Plane;
+    top.selection.plane_point_mm = {0, 0, 10};
+    top.selection.plane_normal = {0, 0, 1};
+    top.selection.plane_tolerance_mm = 1e-6;
+    top.constraint = Constraint::Sliding;
+    s.node_sets.push_back(top);
+  }
+  FaceSetSettings skin;
+  skin.name = "skin";
+  skin.selection.kind = SetSelection::Kind::Plane;
+  skin.selection.plane_point_mm = {0, 0, 0};
+  skin.selection.plane_normal = {0, 1, 0};
+  skin.selection.plane_tolerance_mm = 1e-6;
+  s.face_sets.push_back(skin);
+  s.gravity_direction = "prone";
+  s.gravity_m_s2 = 9.81;
+  return s;
+}
+
+Model block_model(const BlockModelOptions& options) {
+  return build_model(block_mesh(), block_settings(options), block_materials(options.ogden_tumor), "test fixture");
+}
+
+}  // namespace tissuemesh::test

@@ -1,0 +1,34 @@
+// Small models for writer and solver tests, built through the library's own build_model.
+//
+// block_mesh(): a 20 x 10 x 10 mm box on a 2 mm grid (10 x 5 x 5 cubes, each split into 6
+// positively oriented tets along its main diagonal, conforming): 1,500 tets, 396 nodes, three
+// tissues by x: fat [0, 8), fgt [8, 14), tumor [14, 20]. Volumes 800, 600, 600 mm^3.
+#pragma once
+
+#include "core/model.h"
+#include "core/model_settings.h"
+#include "core/tet_mesh.h"
+
+#include <map>
+#include <string>
+
+namespace tissuemesh::test {
+
+TetMesh block_mesh();
+
+struct BlockModelOptions {
+  ElementOrder order = ElementOrder::Linear;
+  bool ogden_tumor = false;        ///< tumor as 2-term Ogden instead of Mooney-Rivlin
+  bool sliding_top = false;        ///< add a sliding set on the plane z = 10 (normal +z)
+  UnitSystem units = UnitSystem::MillimetreTonneSecond;
+};
+
+/// Materials: fat neo-Hookean (mu 150 Pa, K 50 kPa, 950 kg/m^3), fgt Mooney-Rivlin (C10 100 Pa,
+/// C01 50 Pa, K 60 kPa, 1040 kg/m^3), tumor Mooney-Rivlin (C10 400 Pa, C01 50 Pa, K 100 kPa,
+/// 1060 kg/m^3) or Ogden (mu 700/200 Pa, alpha 2/-2). Fixed set `chest_wall` = plane y = 10
+/// (posterior face), face set `skin` = the boundary face y = 0 (anterior), prone gravity 9.81.
+std::map<std::string, MaterialSpec> block_materials(bool ogden_tumor);
+ModelSettings block_settings(const BlockModelOptions& options);
+Model block_model(const BlockModelOptions& options = {});
+
+}  // namespace tissuemesh::test
