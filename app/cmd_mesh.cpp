@@ -1,6 +1,7 @@
 // tissuemesh mesh LABELS -c CONFIG -o DIR
 #include "app/cli_support.h"
 #include "app/commands.h"
+#include "app/job_config.h"
 #include "app/mesh_outputs.h"
 #include "core/errors.h"
 #include "core/output_dir.h"
@@ -28,9 +29,10 @@ void add_mesh_command(CLI::App& cli, Invocation& run) {
   sub->add_flag("--print-config", opt->print_config, "print the effective config (defaults filled in) and exit");
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("mesh", [&] {
-      const MeshConfig config = MeshConfig::load(opt->config);
+      const JobConfig job = JobConfig::load(opt->config);
+      const MeshConfig& config = job.require_mesh();
       if (opt->print_config) {
-        std::cout << config.to_yaml();
+        std::cout << job.to_yaml();
         return;
       }
       if (opt->out.empty()) throw InputError("--out DIR is required");

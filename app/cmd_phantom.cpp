@@ -1,6 +1,7 @@
 // tissuemesh phantom --out FILE [--seed N] [...]: the built-in breast phantom as a label image.
 #include "app/cli_support.h"
 #include "app/commands.h"
+#include "app/job_config.h"
 #include "core/errors.h"
 #include "core/output_dir.h"
 #include "mesher/image_io.h"
@@ -38,7 +39,7 @@ void add_phantom_command(CLI::App& cli, Invocation& run) {
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("phantom", [&] {
       PhantomParams params = opt->config.empty() ? MeshConfig::phantom_default().phantom
-                                                 : MeshConfig::load(opt->config).phantom;
+                                                 : JobConfig::load(opt->config).require_mesh().phantom;
       if (opt->seed) params.seed = *opt->seed;
       if (!opt->tumor_center.empty()) params.tumor_center_mm = Eigen::Vector3d(opt->tumor_center.data());
       if (opt->tumor_diameter) params.tumor_diameter_mm = *opt->tumor_diameter;

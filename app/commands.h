@@ -16,5 +16,6 @@ void add_demo_command(CLI::App& cli, Invocation& run);
 void add_phantom_command(CLI::App& cli, Invocation& run);
 void add_mesh_command(CLI::App& cli, Invocation& run);
 void add_info_command(CLI::App& cli, Invocation& run);
+void add_export_command(CLI::App& cli, Invocation& run);
 
 }  // namespace tissuemesh::app

@@ -6,7 +6,8 @@
 int main(int argc, char** argv) {
   using namespace tissuemesh::app;
   CLI::App cli{"tissuemesh " + tissuemesh::library_versions().at("tissuemesh") +
-               ": segmented breast MRI -> conforming multi-material tetrahedral FE meshes.\n"
+               ": segmented breast MRI -> conforming multi-material tetrahedral FE models\n"
+               "for FEBio, Abaqus/CalculiX and SOFA.\n"
                "Coordinates are LPS millimetres throughout."};
   cli.require_subcommand(1);
   cli.set_version_flag("--version", tissuemesh::library_versions().at("tissuemesh"));
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   add_demo_command(cli, run);
   add_phantom_command(cli, run);
   add_mesh_command(cli, run);
+  add_export_command(cli, run);
   add_info_command(cli, run);
   try {
     cli.parse(argc, argv);

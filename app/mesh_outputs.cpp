@@ -19,7 +19,7 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 }
 }  // namespace
 
-void mesh_into(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
+TetMesh mesh_into(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
                const nlohmann::json& inputs, const std::string& cmd, Progress& progress, OutputDir& out) {
   const MeshJobResult result = run_mesh_job(labels, image_name, config, progress);
   {
@@ -37,6 +37,7 @@ void mesh_into(const LabelImage& labels, const std::string& image_name, const Me
   write_text(out.stage("report.json"), record.dump(2) + "\n");
   write_text(out.stage("report.txt"), text);
   std::cout << "\n" << text;
+  return result.meshing.mesh;
 }
 
 }  // namespace tissuemesh::app

@@ -4,6 +4,7 @@
 #include "core/label_image.h"
 #include "core/output_dir.h"
 #include "core/progress.h"
+#include "core/tet_mesh.h"
 #include "mesher/mesh_config.h"
 
 #include <nlohmann/json.hpp>
@@ -14,8 +15,9 @@ namespace tissuemesh::app {
 
 /// Meshes `labels` with `config`, stages DIR/mesh.vtu, DIR/report.json (the run record: inputs,
 /// effective config, versions, timings, counts, quality) and DIR/report.txt, and prints the
-/// report table. `inputs` is merged into the record's "inputs". Does not commit `out`.
-void mesh_into(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
+/// report table. `inputs` is merged into the record's "inputs". Does not commit `out`. Returns the
+/// mesh (for the demo's exports).
+TetMesh mesh_into(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
                const nlohmann::json& inputs, const std::string& command_line, Progress& progress,
                OutputDir& out);
 

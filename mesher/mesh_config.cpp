@@ -5,9 +5,15 @@
 namespace tissuemesh {
 
 MeshConfig MeshConfig::parse(const YAML::Node& root, const std::string& source) {
-  MeshConfig c;
-  c.source = source;
   YamlMap top(root, "", source);
+  MeshConfig c = from_top(top);
+  top.finish();
+  return c;
+}
+
+MeshConfig MeshConfig::from_top(YamlMap& top) {
+  MeshConfig c;
+  c.source = top.source();
   c.pipeline = top.text("pipeline", c.pipeline);
   if (c.pipeline != "direct") {
     throw InputError(top.where("pipeline") + ": unknown pipeline '" + c.pipeline +
@@ -19,7 +25,6 @@ MeshConfig MeshConfig::parse(const YAML::Node& root, const std::string& source) 
   YamlMap phantom = top.map("phantom");
   c.phantom = parse_phantom_params(phantom);
   phantom.finish();
-  top.finish();
   return c;
 }
 
@@ -40,14 +45,18 @@ MeshConfig MeshConfig::phantom_default() {
 std::string MeshConfig::to_yaml() const {
   YAML::Emitter out;
   out << YAML::BeginMap;
+  emit_keys(out);
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+void MeshConfig::emit_keys(YAML::Emitter& out) const {
   out << YAML::Key << "pipeline" << YAML::Value << pipeline;
   tissues.to_yaml(out);
   out << YAML::Key << "direct" << YAML::Value;
   direct.to_yaml(out);
   out << YAML::Key << "phantom" << YAML::Value;
   phantom_params_to_yaml(phantom, out);
-  out << YAML::EndMap;
-  return std::string(out.c_str()) + "\n";
 }
 
 }  // namespace tissuemesh

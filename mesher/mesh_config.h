@@ -29,11 +29,16 @@ struct MeshConfig {
   static MeshConfig load(const std::string& path);
   /// Same from a parsed document; `source` names it in messages.
   static MeshConfig parse(const YAML::Node& root, const std::string& source);
+  /// Reads the meshing keys of a whole-pipeline config's top level without finish(): the caller
+  /// (app/job_config.h) reads the other sections and then rejects unknown keys.
+  static MeshConfig from_top(YamlMap& top);
   /// The config `tissuemesh demo` uses when given none; identical to configs/phantom.yaml
   /// (a test keeps them in sync).
   static MeshConfig phantom_default();
 
   std::string to_yaml() const;
+  /// The same keys into an open top-level map of `out`.
+  void emit_keys(YAML::Emitter& out) const;
 };
 
 }  // namespace tissuemesh

@@ -16,7 +16,8 @@ TEST(Demo, PhantomMeshIsConformingWithFaithfulVolumes) {
   const auto r = test::run_cli("demo --out demo", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(test::files_below(dir / "demo"),
-            (std::vector<std::string>{"mesh.vtu", "phantom.nii.gz", "report.json", "report.txt"}));
+            (std::vector<std::string>{"export.json", "mesh.vtu", "model.feb", "model.inp", "model.msh", "model.scn",
+                                      "model.vtk", "model.vtu", "phantom.nii.gz", "report.json", "report.txt"}));
   for (const char* stage : {"generate phantom done in", "refine (CGAL Mesh_3) done in", "exude slivers done in"})
     EXPECT_NE(r.out.find(stage), std::string::npos) << stage;
 
@@ -52,4 +53,6 @@ TEST(Demo, SameRunSameMesh) {
   ASSERT_EQ(test::run_cli("demo --out b", dir).exit_code, 0);
   EXPECT_EQ(test::read_file(dir / "a/mesh.vtu"), test::read_file(dir / "b/mesh.vtu"));
   EXPECT_EQ(test::read_file(dir / "a/phantom.nii.gz"), test::read_file(dir / "b/phantom.nii.gz"));
+  for (const char* f : {"model.feb", "model.inp", "model.scn", "model.vtk", "model.vtu", "model.msh"})
+    EXPECT_EQ(test::read_file(dir / "a" / f), test::read_file(dir / "b" / f)) << f;
 }

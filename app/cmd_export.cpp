@@ -1,0 +1,68 @@
+// tissuemesh export MESH -c CONFIG -o DIR [--format febio,abaqus,sofa,vtu,msh]
+#include "app/cli_support.h"
+#include "app/commands.h"
+#include "app/export_outputs.h"
+#include "app/job_config.h"
+#include "core/errors.h"
+#include "core/output_dir.h"
+#include "core/vtu_io.h"
+#include "fe_export/registry.h"
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace tissuemesh::app {
+
+namespace {
+struct ExportCliOptions {
+  std::string mesh, config, out;
+  std::vector<std::string> formats;
+  bool print_config = false;
+};
+
+std::string format_help() {
+  std::string s = "formats to write (default: the config's export.formats = all):";
+  for (const ExportFormat& f : export_formats()) s += "\n  " + f.name + " -> " + f.default_file + ": " + f.description;
+  return s;
+}
+}  // namespace
+
+void add_export_command(CLI::App& cli, Invocation& run) {
+  auto opt = std::make_shared<ExportCliOptions>();
+  CLI::App* sub = cli.add_subcommand(
+      "export", "Mesh + materials + boundary conditions + gravity -> FEBio .feb, Abaqus/CalculiX .inp, SOFA .scn, "
+                ".vtu, .msh in DIR, with DIR/export.json");
+  sub->add_option("MESH", opt->mesh, "tetrahedral mesh written by `tissuemesh mesh` (mesh.vtu)")->required();
+  sub->add_option("-c,--config", opt->config, "config with `materials:` and `model:` (e.g. configs/phantom.yaml)")
+      ->required();
+  sub->add_option("-o,--out", opt->out, "output directory");
+  sub->add_option("--format", opt->formats, format_help())->delimiter(',');
+  sub->add_flag("--print-config", opt->print_config, "print the effective config (defaults filled in) and exit");
+  sub->callback([opt, &run] {
+    run.exit_code = run_guarded("export", [&] {
+      const JobConfig config = JobConfig::load(opt->config);
+      if (opt->print_config) {
+        std::cout << config.to_yaml();
+        return;
+      }
+      if (opt->out.empty()) throw InputError("--out DIR is required");
+      const std::vector<std::string> formats = opt->formats.empty() ? config.exports.formats : opt->formats;
+      for (const std::string& f : formats) export_format_named(f);  // unknown names fail before any work
+      OutputDir out(opt->out);
+      Progress progress = console_progress();
+      TetMesh mesh;
+      {
+        auto stage = progress.stage("read " + opt->mesh);
+        mesh = read_vtu(opt->mesh);
+      }
+      const nlohmann::json inputs = {{"mesh", std::filesystem::absolute(opt->mesh).string()},
+                                     {"config", std::filesystem::absolute(opt->config).string()}};
+      export_into(mesh, config, formats, inputs, run.command_line, progress, out);
+      out.commit();
+      std::cout << "wrote " << out.target().string() << "/export.json and the model files listed in it\n";
+    });
+  });
+}
+
+}  // namespace tissuemesh::app
