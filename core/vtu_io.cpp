@@ -1,6 +1,7 @@
 #include "core/vtu_io.h"
 
 #include "core/errors.h"
+#include "core/vtk_grid_file.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -19,18 +20,6 @@
 #include <filesystem>
 
 namespace tissuemesh {
-
-namespace {
-
-vtkNew<vtkStringArray> string_field(const char* name, const std::vector<std::string>& values) {
-  vtkNew<vtkStringArray> a;
-  a->SetName(name);
-  a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
-  for (std::size_t i = 0; i < values.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), values[i]);
-  return a;
-}
-
-}  // namespace
 
 void write_vtu(const TetMesh& mesh, const std::string& path, const CellScalars& extra) {
   mesh.validate(path);
@@ -68,16 +57,7 @@ void write_vtu(const TetMesh& mesh, const std::string& path, const CellScalars& 
     for (std::size_t t = 0; t < values.size(); ++t) a->SetValue(t, values[t]);
     grid->GetCellData()->AddArray(a);
   }
-  grid->GetFieldData()->AddArray(string_field("tissue_names", mesh.tissue_names));
-  grid->GetFieldData()->AddArray(string_field("coordinate_system", {"LPS"}));
-  grid->GetFieldData()->AddArray(string_field("length_unit", {"mm"}));
-
-  vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(grid);
-  writer->SetDataModeToAppended();
-  writer->SetCompressorTypeToZLib();
-  if (writer->Write() != 1) throw OutputError(path + ": cannot write VTU file");
+  write_grid_vtu(*grid, mesh.tissue_names, path);
 }
 
 TetMesh read_vtu(const std::string& path) {

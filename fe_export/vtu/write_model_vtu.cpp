@@ -2,6 +2,7 @@
 #include "fe_export/vtu/write_model_vtu.h"
 
 #include "core/errors.h"
+#include "core/vtk_grid_file.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -25,23 +26,6 @@
 namespace tissuemesh {
 
 namespace {
-
-// Observing ErrorEvent keeps VTK from printing its error (the library never prints); the
-// failure is reported through OutputError instead.
-class ErrorCapture : public vtkCommand {
- public:
-  static ErrorCapture* New() { return new ErrorCapture; }
-  void Execute(vtkObject*, unsigned long, void*) override { failed = true; }
-  bool failed = false;
-};
-
-vtkNew<vtkStringArray> string_field(const char* name, const std::vector<std::string>& values) {
-  vtkNew<vtkStringArray> a;
-  a->SetName(name);
-  a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
-  for (std::size_t i = 0; i < values.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), values[i]);
-  return a;
-}
 
 // One Float64 cell array holding a per-tissue value (SI) for every element.
 vtkNew<vtkDoubleArray> tissue_cell_array(const Model& model, const char* name,
@@ -102,21 +86,8 @@ void write_model_vtu(const Model& model, const std::string& path) {
 
   std::vector<std::string> laws;
   for (const MaterialSpec& m : model.materials) laws.push_back(material_law_name(m.law));
-  grid->GetFieldData()->AddArray(string_field("tissue_names", model.tissue_names));
-  grid->GetFieldData()->AddArray(string_field("material_laws", laws));
-  grid->GetFieldData()->AddArray(string_field("coordinate_system", {"LPS"}));
-  grid->GetFieldData()->AddArray(string_field("length_unit", {"mm"}));
-
-  vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(grid);
-  writer->SetDataModeToAppended();
-  writer->SetCompressorTypeToZLib();
-  vtkNew<ErrorCapture> errors;
-  writer->AddObserver(vtkCommand::ErrorEvent, errors);
-  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);  // "returned failure" report
-  if (writer->Write() != 1 || errors->failed)
-    throw OutputError(path + ": cannot write VTU file (missing or read-only directory, or disk full?)");
+  add_string_field(*grid, "material_laws", laws);
+  write_grid_vtu(*grid, model.tissue_names, path);
 }
 
 }  // namespace tissuemesh

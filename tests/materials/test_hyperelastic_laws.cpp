@@ -3,6 +3,7 @@
 #include "materials/elastic_constants.h"
 #include "materials/hyperelastic_law.h"
 #include "materials/tensor4.h"
+#include "support/finite_difference.h"
 #include "support/tolerances.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,8 @@
 #include <functional>
 
 using namespace tissuemesh;
+
+using test::bump;
 
 namespace {
 
@@ -30,17 +33,6 @@ std::vector<std::unique_ptr<HyperelasticLaw>> laws() {
   return v;
 }
 
-// Symmetric perturbation of C in the (i, j) component by h (split over ij and ji).
-Eigen::Matrix3d bump(const Eigen::Matrix3d& C, int i, int j, double h) {
-  Eigen::Matrix3d D = C;
-  if (i == j) {
-    D(i, i) += h;
-  } else {
-    D(i, j) += h / 2;
-    D(j, i) += h / 2;
-  }
-  return D;
-}
 
 // Uniaxial stress: stretch lambda along x, lateral stretch s found by bisection so that S22 = 0;
 // returns {P11 = lambda S11, s, J}.

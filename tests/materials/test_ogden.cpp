@@ -5,6 +5,7 @@
 #include "core/errors.h"
 #include "materials/hyperelastic_law.h"
 #include "materials/tensor4.h"
+#include "support/finite_difference.h"
 #include "support/tolerances.h"
 
 #include <gtest/gtest.h>
@@ -17,6 +18,8 @@
 #include <vector>
 
 using namespace tissuemesh;
+
+using test::bump;
 
 namespace {
 
@@ -79,17 +82,6 @@ std::vector<Eigen::Matrix3d> test_states() {
   return v;
 }
 
-// Symmetric perturbation of C in the (i, j) component by h (split over ij and ji).
-Eigen::Matrix3d bump(const Eigen::Matrix3d& C, int i, int j, double h) {
-  Eigen::Matrix3d D = C;
-  if (i == j) {
-    D(i, i) += h;
-  } else {
-    D(i, j) += h / 2;
-    D(j, i) += h / 2;
-  }
-  return D;
-}
 
 // Central differences, h = 1e-6 (tolerances.h, kFiniteDifferenceRel). The stress scale adds the
 // shear modulus because S = 0 at C = I while its derivative is not.

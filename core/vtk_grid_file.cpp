@@ -1,0 +1,49 @@
+#include "core/vtk_grid_file.h"
+
+#include "core/errors.h"
+
+#include <vtkCommand.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkStringArray.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+namespace tissuemesh {
+
+namespace {
+// Observing ErrorEvent keeps VTK from printing its error (the library never prints); the
+// failure is reported through OutputError instead.
+class ErrorCapture : public vtkCommand {
+ public:
+  static ErrorCapture* New() { return new ErrorCapture; }
+  void Execute(vtkObject*, unsigned long, void*) override { failed = true; }
+  bool failed = false;
+};
+}  // namespace
+
+void add_string_field(vtkUnstructuredGrid& grid, const char* name, const std::vector<std::string>& values) {
+  vtkNew<vtkStringArray> a;
+  a->SetName(name);
+  a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), values[i]);
+  grid.GetFieldData()->AddArray(a);
+}
+
+void write_grid_vtu(vtkUnstructuredGrid& grid, const std::vector<std::string>& tissue_names, const std::string& path) {
+  add_string_field(grid, "tissue_names", tissue_names);
+  add_string_field(grid, "coordinate_system", {"LPS"});
+  add_string_field(grid, "length_unit", {"mm"});
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(&grid);
+  writer->SetDataModeToAppended();
+  writer->SetCompressorTypeToZLib();
+  vtkNew<ErrorCapture> errors;
+  writer->AddObserver(vtkCommand::ErrorEvent, errors);
+  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);  // "returned failure" report
+  if (writer->Write() != 1 || errors->failed)
+    throw OutputError(path + ": cannot write VTU file (missing or read-only directory, or disk full?)");
+}
+
+}  // namespace tissuemesh
