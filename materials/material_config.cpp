@@ -57,6 +57,19 @@ ElasticConstants constants(YamlMap& map, F&& make) {
   }
 }
 
+// A relative preset path is looked up next to the config file first, then among the shipped
+// configs (source tree, then the installed copy), so that a config copied out of configs/ still
+// finds `materials/ucl-niftysim-invivo.yaml`.
+fs::path resolve_preset(const std::string& preset, const std::string& config_path) {
+  const fs::path p(preset);
+  if (p.is_absolute()) return p;
+  const fs::path beside = fs::path(config_path).parent_path() / p;
+  if (fs::exists(beside)) return beside;
+  for (const char* dir : {TISSUEMESH_SOURCE_CONFIG_DIR, TISSUEMESH_INSTALLED_CONFIG_DIR})
+    if (fs::exists(fs::path(dir) / p)) return fs::path(dir) / p;
+  return beside;  // load_yaml_file names it in the error
+}
+
 }  // namespace
 
 MaterialSpec parse_material(YamlMap& map) {
@@ -149,8 +162,7 @@ MaterialTable MaterialTable::from_yaml(YamlMap& map, const std::string& config_p
   table.source = map.source();
   if (map.has("preset")) {
     table.preset = map.text("preset", "");
-    fs::path p(table.preset);
-    if (p.is_relative()) p = fs::path(config_path).parent_path() / p;
+    const fs::path p = resolve_preset(table.preset, config_path);
     YAML::Node root = load_yaml_file(p.string());
     YamlMap top(root, "", p.string());
     top.text("description", "");

@@ -1,7 +1,8 @@
 // The `materials:` section of a config: tissue name -> MaterialSpec (core/material_spec.h).
 //
 //   materials:
-//     preset: materials/ucl-niftysim-invivo.yaml   # optional; relative to this config file;
+//     preset: materials/ucl-niftysim-invivo.yaml   # optional; relative to this config file, else
+//                                                  # to the shipped configs/ (source, installed);
 //                                                  # its tissues, then the entries below override
 //     fat:
 //       law: neo-hookean        # neo-hookean | compressible-neo-hookean | mooney-rivlin | ogden
