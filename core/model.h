@@ -4,8 +4,10 @@
 //         + node sets (fixed or sliding) + face sets + gravity + units + analysis settings.
 //
 // Conventions every writer and the solver rely on:
-// - nodes in LPS millimetres; the first `num_corner_nodes` are the mesh's own nodes in the mesh's
-//   order, midside nodes (tet10) follow. Writers convert lengths with `units`.
+// - nodes in LPS millimetres; the first `num_corner_nodes` are the mesh's own nodes, in reverse
+//   Cuthill-McKee order unless `model.node_order: mesh` (then in the mesh's order); midside nodes
+//   (tet10) follow. `mesh_node_of` maps each corner node back to the mesh. Writers convert
+//   lengths with `units`.
 // - elements[e][0..3] are the corners, positively oriented ((n1-n0).((n2-n0)x(n3-n0)) > 0);
 //   for tet10, [4..9] are the midside nodes of edges (0,1) (1,2) (2,0) (0,3) (1,3) (2,3): the
 //   order of VTK, Abaqus/CalculiX C3D10 and FEBio tet10 (formats.md §1.6). Unused slots are -1.
@@ -69,6 +71,9 @@ struct Model {
   std::string title;
   std::vector<Eigen::Vector3d> nodes;      ///< LPS mm
   int num_corner_nodes = 0;
+  /// Per corner node (0..num_corner_nodes-1): its index in the input mesh (mesh.vtu), to map results
+  /// back. Identity with `node_order: mesh`. Set by build_model; empty in a model made otherwise.
+  std::vector<int> mesh_node_of;
   ElementOrder order = ElementOrder::Linear;
   std::vector<std::array<int, 10>> elements;
   std::vector<int> tissue_ids;             ///< per element, 1-based

@@ -1,6 +1,7 @@
 #include "core/model_builder.h"
 
 #include "core/errors.h"
+#include "core/node_ordering.h"
 
 #include <Eigen/Geometry>
 
@@ -191,6 +192,54 @@ void drop_fixed_from_sliding(Model& m) {
   }
 }
 
+// Renumbers the nodes by reverse Cuthill-McKee while keeping the corners first (core/model.h):
+// corners by RCM on the corner graph, then midside nodes by (lower, higher) new index of their
+// edge's ends. Elements, node sets (re-sorted, normals kept paired) and mesh_node_of follow; face
+// sets are (element, face) pairs and elements keep their order.
+void renumber_nodes_rcm(Model& m) {
+  const int corners = m.num_corner_nodes;
+  std::vector<int> new_of_old = reverse_cuthill_mckee(corners, m.elements, 4);
+  new_of_old.resize(m.nodes.size(), -1);
+  if (m.order == ElementOrder::Quadratic) {
+    std::vector<std::array<int, 3>> midsides;  // (lower new end, higher new end, old index)
+    midsides.reserve(m.nodes.size() - static_cast<std::size_t>(corners));
+    std::vector<char> seen(m.nodes.size(), 0);
+    for (const auto& el : m.elements)
+      for (int k = 0; k < 6; ++k) {
+        const int v = el[4 + k];
+        if (seen[v]) continue;
+        seen[v] = 1;
+        const int a = new_of_old[el[kEdges[k][0]]], b = new_of_old[el[kEdges[k][1]]];
+        midsides.push_back({std::min(a, b), std::max(a, b), v});
+      }
+    std::sort(midsides.begin(), midsides.end());
+    for (std::size_t i = 0; i < midsides.size(); ++i) new_of_old[midsides[i][2]] = corners + static_cast<int>(i);
+  }
+  std::vector<Eigen::Vector3d> nodes(m.nodes.size());
+  for (std::size_t i = 0; i < m.nodes.size(); ++i) nodes[new_of_old[i]] = m.nodes[i];
+  m.nodes = std::move(nodes);
+  std::vector<int> mesh_node_of(static_cast<std::size_t>(corners));
+  for (int i = 0; i < corners; ++i) mesh_node_of[new_of_old[i]] = m.mesh_node_of[i];
+  m.mesh_node_of = std::move(mesh_node_of);
+  const int npe = m.nodes_per_element();
+  for (auto& el : m.elements)
+    for (int k = 0; k < npe; ++k) el[k] = new_of_old[el[k]];
+  for (NodeSet& s : m.node_sets) {
+    std::vector<std::size_t> at(s.nodes.size());
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      at[i] = i;
+      s.nodes[i] = new_of_old[s.nodes[i]];
+    }
+    std::sort(at.begin(), at.end(), [&](std::size_t x, std::size_t y) { return s.nodes[x] < s.nodes[y]; });
+    NodeSet sorted = s;
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      sorted.nodes[i] = s.nodes[at[i]];
+      if (!s.normals.empty()) sorted.normals[i] = s.normals[at[i]];
+    }
+    s = std::move(sorted);
+  }
+}
+
 }  // namespace
 
 void make_quadratic(Model& model) {
@@ -216,6 +265,8 @@ Model build_model(const TetMesh& mesh, const ModelSettings& settings,
   Model m;
   m.nodes = mesh.points;
   m.num_corner_nodes = static_cast<int>(mesh.points.size());
+  m.mesh_node_of.resize(mesh.points.size());
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) m.mesh_node_of[i] = static_cast<int>(i);
   // Elements grouped by tissue (stable within a tissue): every format then numbers them the same
   // way (FEBio needs one contiguous block per tissue, Abaqus/CalculiX ids follow the model).
   std::vector<std::size_t> order(mesh.tets.size());
@@ -254,6 +305,8 @@ Model build_model(const TetMesh& mesh, const ModelSettings& settings,
     for (NodeSet& s : m.node_sets) extend_to_midsides(m, s);
   }
   drop_fixed_from_sliding(m);
+  // After make_quadratic and the set extension, so that midside nodes are renumbered too.
+  if (settings.node_order == NodeOrder::ReverseCuthillMcKee) renumber_nodes_rcm(m);
   validate_model(m);
   return m;
 }

@@ -1,6 +1,12 @@
 // build_model: TetMesh + ModelSettings + materials per tissue -> Model (core/model.h).
 //
-// Elements are grouped by tissue id (the mesh's order within a tissue); nodes keep the mesh's order.
+// Elements are grouped by tissue id (the mesh's order within a tissue). Nodes: with `node_order:
+// rcm` (the default) the corners are renumbered by reverse Cuthill-McKee on the corner graph
+// (core/node_ordering.h) and tet10 midside nodes follow them, ordered by the (lower, higher) new
+// index of their edge's ends; with `node_order: mesh` corners keep the mesh's order and midside
+// nodes follow in make_quadratic's order. Corners stay first either way (SOFA writes only them),
+// and Model::mesh_node_of maps each corner back to the mesh. Renumbering happens last, so every
+// selection below sees the mesh's numbering and selects the same points either way.
 // Selections (core/model_settings.h) are evaluated on the linear mesh: `between` takes the
 // triangles shared by a tet of side A and a tet of side B (a boundary triangle when a side is
 // `outside`); `plane` the nodes within tolerance of the plane; `box` the nodes inside the box.

@@ -174,6 +174,14 @@ ModelSettings ModelSettings::from_yaml(YamlMap& map) {
     s.element = ElementOrder::Quadratic;
   else
     throw InputError(map.where("element") + ": unknown element '" + element + "' (tet4 or tet10)");
+  const std::string node_order = map.text("node_order", "rcm");
+  if (node_order == "rcm")
+    s.node_order = NodeOrder::ReverseCuthillMcKee;
+  else if (node_order == "mesh")
+    s.node_order = NodeOrder::Mesh;
+  else
+    throw InputError(map.where("node_order") + ": unknown node order '" + node_order +
+                     "' (rcm: reverse Cuthill-McKee, or mesh: the mesh's order)");
 
   YAML::Node sets = map.raw("node_sets");
   if (sets.IsDefined() && !sets.IsNull()) {
@@ -254,6 +262,7 @@ void ModelSettings::to_yaml(YAML::Emitter& out) const {
   out << YAML::BeginMap;
   out << YAML::Key << "units" << YAML::Value << unit_system_name(units);
   out << YAML::Key << "element" << YAML::Value << (element == ElementOrder::Linear ? "tet4" : "tet10");
+  out << YAML::Key << "node_order" << YAML::Value << (node_order == NodeOrder::Mesh ? "mesh" : "rcm");
   out << YAML::Key << "node_sets" << YAML::Value << YAML::BeginSeq;
   for (const NodeSetSettings& n : node_sets) {
     out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << n.name;

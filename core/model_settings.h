@@ -4,6 +4,10 @@
 //   model:
 //     units: mm-t-s               # SI | mm-t-s (MPa, t/mm^3) | mm-kg-s (kPa, kg/mm^3)
 //     element: tet4               # tet4 | tet10 (straight edges, midside nodes shared)
+//     node_order: rcm             # rcm (default): reverse Cuthill-McKee, a small matrix profile
+//                                 #   (FEBio's skyline solver without MKL); corners renumbered among
+//                                 #   themselves, tet10 midside nodes after them | mesh: keep
+//                                 #   the mesh's node order (core/node_ordering.h)
 //     node_sets:                  # each: a name, one selection, a constraint
 //       - name: chest_wall
 //         between: [muscle, outside]   # nodes on the interface between two sides; a side is a
@@ -60,9 +64,13 @@ struct FaceSetSettings {
   SetSelection selection;
 };
 
+/// How build_model numbers the nodes (core/model.h).
+enum class NodeOrder { ReverseCuthillMcKee, Mesh };
+
 struct ModelSettings {
   UnitSystem units = UnitSystem::MillimetreTonneSecond;
   ElementOrder element = ElementOrder::Linear;
+  NodeOrder node_order = NodeOrder::ReverseCuthillMcKee;  ///< `rcm` | `mesh`
   std::vector<NodeSetSettings> node_sets;
   std::vector<FaceSetSettings> face_sets;
   std::string gravity_direction = "prone";             ///< prone | supine | none | vector
@@ -71,7 +79,8 @@ struct ModelSettings {
   AnalysisSettings analysis;
 
   /// The settings `tissuemesh demo` uses: chest wall (muscle|outside) fixed, skin face set, prone
-  /// gravity, mm-t-s, tet4. Identical to the `model:` section of configs/phantom.yaml (tested).
+  /// gravity, mm-t-s, tet4, RCM node order. Identical to the `model:` section of
+  /// configs/phantom.yaml (tested).
   static ModelSettings phantom_default();
   /// Reads a `model:` mapping; calls map.finish(). Throws InputError naming the key.
   static ModelSettings from_yaml(YamlMap& map);

@@ -1,6 +1,7 @@
 #include "fe_export/febio/write_febio.h"
 
 #include "core/errors.h"
+#include "core/node_ordering.h"
 
 #include <algorithm>
 #include <array>
@@ -339,20 +340,6 @@ void write_loads(std::ostream& out, const Model& model) {
       << "  </Loads>\n";
 }
 
-/// Sum over nodes of (node - lowest neighbour): the skyline profile per dof row, in nodes.
-double node_profile(const Model& model) {
-  std::vector<int> low(model.nodes.size());
-  for (std::size_t i = 0; i < low.size(); ++i) low[i] = static_cast<int>(i);
-  const int npe = model.nodes_per_element();
-  for (const auto& el : model.elements) {
-    const int m = *std::min_element(el.begin(), el.begin() + npe);
-    for (int k = 0; k < npe; ++k) low[el[k]] = std::min(low[el[k]], m);
-  }
-  double sum = 0.0;
-  for (std::size_t i = 0; i < low.size(); ++i) sum += static_cast<double>(i) - low[i];
-  return sum;
-}
-
 std::vector<std::string> collect_notes(const Model& model, const FebioOptions& options, const SlidingPlan& plan,
                                        const std::vector<std::vector<int>>& by_tissue) {
   std::vector<std::string> notes;
@@ -379,11 +366,13 @@ std::vector<std::string> collect_notes(const Model& model, const FebioOptions& o
   }
   const std::string solver = options.linear_solver;
   if ((solver.empty() || solver == "skyline") && model.nodes.size() >= 10000) {
+    const long long profile =
+        matrix_profile(static_cast<int>(model.nodes.size()), model.elements, model.nodes_per_element());
     std::ostringstream s;
     s << "FEBio: built without MKL, FEBio uses the skyline solver" << (solver.empty() ? " by default" : "")
-      << ", whose memory and time grow with the matrix profile (here " << num(std::round(node_profile(model)))
-      << " node columns, x9 for dofs); renumber the nodes to a small profile (reverse Cuthill-McKee) or use an "
-         "MKL build (pardiso) for large models";
+      << ", whose memory and time grow with the matrix profile (here " << profile
+      << " node columns, x9 for dofs); renumber the nodes to a small profile (reverse Cuthill-McKee: "
+         "model.node_order: rcm, the default) or use an MKL build (pardiso) for large models";
     notes.push_back(s.str());
   }
   if (solver == "pardiso" || solver == "pardiso_64" || solver == "mkl_dss" || solver == "fgmres" || solver == "cg")

@@ -2,6 +2,7 @@
 // the checks every writer relies on (validate_model). Counts are derived by hand from the grid.
 #include "core/errors.h"
 #include "core/model_builder.h"
+#include "core/node_ordering.h"
 #include "core/quantity.h"
 #include "support/model_fixture.h"
 #include "support/test_helpers.h"
@@ -11,6 +12,9 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <iostream>
+#include <map>
 #include <set>
 
 using namespace tissuemesh;
@@ -26,6 +30,27 @@ Eigen::Vector3d face_normal(const Model& m, const std::array<int, 2>& f) {
 ModelSettings settings_from(const std::string& yaml) {
   YamlMap map(YAML::Load(yaml), "model", "t.yaml");
   return ModelSettings::from_yaml(map);
+}
+
+Model block_in(NodeOrder order, const test::BlockModelOptions& o = {}) {
+  ModelSettings s = test::block_settings(o);
+  s.node_order = order;
+  return build_model(test::block_mesh(), s, test::block_materials(o.ogden_tumor), "t");
+}
+
+long long profile(const Model& m) {
+  return matrix_profile(static_cast<int>(m.nodes.size()), m.elements, m.nodes_per_element());
+}
+
+// Node set as point -> normal (zero for a fixed set): what the set means, whatever the numbering.
+std::map<std::array<double, 3>, std::array<double, 3>> by_point(const Model& m, const NodeSet& s) {
+  std::map<std::array<double, 3>, std::array<double, 3>> out;
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+    const Eigen::Vector3d& p = m.nodes[s.nodes[i]];
+    const Eigen::Vector3d n = s.normals.empty() ? Eigen::Vector3d::Zero() : s.normals[i];
+    out[{p.x(), p.y(), p.z()}] = {n.x(), n.y(), n.z()};
+  }
+  return out;
 }
 
 }  // namespace
@@ -136,6 +161,67 @@ TEST(ModelBuilder, InterfaceSlidingNormalsAreAreaWeighted) {
   }
 }
 
+TEST(ModelBuilder, RcmIsTheDefaultAndKeepsTheMapBackToTheMesh) {
+  EXPECT_EQ(ModelSettings{}.node_order, NodeOrder::ReverseCuthillMcKee);
+  const TetMesh mesh = test::block_mesh();
+  const Model rcm = test::block_model(), kept = block_in(NodeOrder::Mesh);
+  ASSERT_EQ(rcm.mesh_node_of.size(), mesh.points.size());
+  std::vector<int> sorted = rcm.mesh_node_of, identity(mesh.points.size());
+  for (std::size_t i = 0; i < identity.size(); ++i) identity[i] = static_cast<int>(i);
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, identity) << "a permutation of the mesh's nodes";
+  EXPECT_NE(rcm.mesh_node_of, identity);
+  EXPECT_EQ(kept.mesh_node_of, identity);
+  EXPECT_EQ(kept.nodes, mesh.points) << "node_order: mesh keeps the mesh's numbering";
+  for (int i = 0; i < rcm.num_corner_nodes; ++i) EXPECT_EQ(rcm.nodes[i], mesh.points[rcm.mesh_node_of[i]]);
+  // Same elements in the same order, through the map.
+  ASSERT_EQ(rcm.elements.size(), kept.elements.size());
+  for (std::size_t e = 0; e < rcm.elements.size(); ++e)
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(rcm.mesh_node_of[rcm.elements[e][k]], kept.elements[e][k]);
+  EXPECT_EQ(block_in(NodeOrder::ReverseCuthillMcKee).nodes, rcm.nodes) << "deterministic";
+  std::cout << "[ profile  ] block tet4: mesh order " << profile(kept) << ", rcm " << profile(rcm) << "\n";
+  EXPECT_LT(profile(rcm), profile(kept));
+}
+
+TEST(ModelBuilder, RcmTet10KeepsCornersFirstAndSetsOnTheSamePoints) {
+  test::BlockModelOptions o;
+  o.order = ElementOrder::Quadratic;
+  o.sliding_top = true;
+  const Model rcm = block_in(NodeOrder::ReverseCuthillMcKee, o), kept = block_in(NodeOrder::Mesh, o);
+  ASSERT_EQ(rcm.nodes.size(), kept.nodes.size());
+  ASSERT_EQ(rcm.num_corner_nodes, kept.num_corner_nodes);
+  // Corners first (SOFA writes only them), and the corner block is RCM on the corner graph alone.
+  const std::vector<int> corner_rcm = reverse_cuthill_mckee(kept.num_corner_nodes, kept.elements, 4);
+  for (std::size_t e = 0; e < rcm.elements.size(); ++e) {
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_LT(rcm.elements[e][k], rcm.num_corner_nodes);
+      EXPECT_EQ(rcm.elements[e][k], corner_rcm[kept.elements[e][k]]);
+    }
+    for (int k = 4; k < 10; ++k) EXPECT_GE(rcm.elements[e][k], rcm.num_corner_nodes);
+    EXPECT_EQ(element_volume(rcm, e), element_volume(kept, e)) << "element " << e;
+    for (int k = 0; k < 10; ++k) EXPECT_EQ(rcm.nodes[rcm.elements[e][k]], kept.nodes[kept.elements[e][k]]);
+  }
+  // Midside nodes follow by (lower, higher) new index of their edge's ends.
+  const int kEdge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+  std::vector<std::pair<int, int>> ends(rcm.nodes.size() - rcm.num_corner_nodes);
+  for (const auto& el : rcm.elements)
+    for (int k = 0; k < 6; ++k) ends[el[4 + k] - rcm.num_corner_nodes] = std::minmax(el[kEdge[k][0]], el[kEdge[k][1]]);
+  EXPECT_TRUE(std::is_sorted(ends.begin(), ends.end()));
+  EXPECT_TRUE(std::adjacent_find(ends.begin(), ends.end()) == ends.end()) << "one midside node per edge";
+  // Node sets: sorted, on the same points with the same normals; face sets untouched.
+  ASSERT_EQ(rcm.node_sets.size(), 2u);
+  for (std::size_t s = 0; s < rcm.node_sets.size(); ++s) {
+    const NodeSet& a = rcm.node_sets[s];
+    EXPECT_TRUE(std::is_sorted(a.nodes.begin(), a.nodes.end())) << a.name;
+    EXPECT_EQ(a.nodes.size(), kept.node_sets[s].nodes.size()) << a.name;
+    EXPECT_EQ(by_point(rcm, a), by_point(kept, kept.node_sets[s])) << a.name;
+  }
+  EXPECT_EQ(rcm.face_sets[0].faces, kept.face_sets[0].faces);
+  std::cout << "[ profile  ] block tet10: mesh order " << profile(kept) << ", rcm (corners first) " << profile(rcm)
+            << "\n";
+  EXPECT_LT(profile(rcm), profile(kept));
+}
+
 TEST(ModelBuilder, GravityByNameAndVector) {
   EXPECT_EQ(settings_from("gravity: {direction: supine}").gravity_acceleration(), Eigen::Vector3d(0, 9.81, 0));
   EXPECT_EQ(settings_from("gravity: {direction: none}").gravity_acceleration(), Eigen::Vector3d::Zero());
@@ -148,6 +234,7 @@ TEST(ModelBuilder, SettingsRoundTripThroughYaml) {
   const ModelSettings s = settings_from(R"(
 units: mm-kg-s
 element: tet10
+node_order: mesh
 node_sets:
   - {name: wall, plane: {point_mm: [0, 10, 0], normal: [0, 2, 0], tolerance_mm: 0.1}, constraint: sliding}
   - {name: corner, box_mm: [0, 0, 0, 2, 2, 2]}
@@ -163,6 +250,7 @@ analysis: {load_steps: 4, max_load_steps: 40}
   again.to_yaml(out2);
   EXPECT_EQ(std::string(out.c_str()), std::string(out2.c_str()));
   EXPECT_EQ(again.element, ElementOrder::Quadratic);
+  EXPECT_EQ(again.node_order, NodeOrder::Mesh);
   EXPECT_EQ(again.node_sets[0].selection.plane_normal, Eigen::Vector3d(0, 1, 0));
   EXPECT_EQ(again.face_sets[0].selection.side_a.tissues.size(), 2u);
 }
@@ -172,6 +260,7 @@ TEST(ModelBuilder, SettingsErrorsNameTheKey) {
   EXPECT_NE(error("element: hex8").find("t.yaml: model.element: unknown element 'hex8'"), std::string::npos);
   EXPECT_NE(error("unit: SI").find("model.unit"), std::string::npos);
   EXPECT_NE(error("units: cgs").find("cgs"), std::string::npos);
+  EXPECT_NE(error("node_order: metis").find("t.yaml: model.node_order: unknown node order 'metis'"), std::string::npos);
   EXPECT_NE(error("node_sets: [{name: a, between: [fat, outside], box_mm: [0,0,0,1,1,1]}]").find("exactly one of"),
             std::string::npos);
   EXPECT_NE(error("node_sets: [{name: a, between: [fat, outside], constraint: glued}]").find("unknown constraint"),

@@ -359,12 +359,15 @@ TEST(SofaScene, RefusesCurvedOrNonPlanarSlidingSets) {
   EXPECT_NE(msg.find("not all parallel"), std::string::npos) << msg;
 
   Model two_planes = planar;  // parallel normals, but one node on the plane z = 8
+  const int at_z8 = static_cast<int>(std::find(planar.nodes.begin(), planar.nodes.end(), Eigen::Vector3d(0, 0, 8)) -
+                                     planar.nodes.begin());  // the node (0, 0, 8), wherever it was numbered
+  ASSERT_LT(at_z8, planar.num_corner_nodes);
   for (NodeSet& s : two_planes.node_sets)
-    if (s.name == "top") {
-      s.nodes.insert(s.nodes.begin(), 4 * 11 * 6);  // node (0,0,k=4): z = 8
-      s.normals.insert(s.normals.begin(), Eigen::Vector3d(0, 0, 1));
+    if (s.name == "top") {  // inserted in place: node sets stay sorted
+      const auto pos = std::lower_bound(s.nodes.begin(), s.nodes.end(), at_z8);
+      s.normals.insert(s.normals.begin() + (pos - s.nodes.begin()), Eigen::Vector3d(0, 0, 1));
+      s.nodes.insert(pos, at_z8);
     }
-  ASSERT_EQ(two_planes.nodes[4 * 11 * 6].z(), 8.0);
   const std::string msg2 = refusal(two_planes);
   EXPECT_NE(msg2.find("'top'"), std::string::npos) << msg2;
   EXPECT_NE(msg2.find("not planar"), std::string::npos) << msg2;
