@@ -71,34 +71,27 @@ std::map<std::string, MaterialSpec> block_materials(bool ogden_tumor) {
   return m;
 }
 
+// A plane through grid nodes: the nodes lie on it exactly, so a tiny tolerance selects them all.
+static SetSelection grid_plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
+  SetSelection s;
+  s.kind = SetSelection::Kind::Plane;
+  s.plane_point_mm = point;
+  s.plane_normal = normal;
+  s.plane_tolerance_mm = 1e-6;
+  return s;
+}
+
 ModelSettings block_settings(const BlockModelOptions& options) {
   ModelSettings s;
   s.units = options.units;
   s.element = options.order;
-  NodeSetSettings wall;
-  wall.name = "chest_wall";
-  wall.selection.kind = SetSelection::Kind::Plane;
-  wall.selection.plane_point_mm = {0, 10, 0};
-  wall.selection.plane_normal = {0, 1, 0};
-  wall.selection.plane_tolerance_mm = 1e-6;
-  wall.constraint = Constraint::Fixed;
+  NodeSetSettings wall{"chest_wall", grid_plane({0, 10, 0}, {0, 1, 0}), Constraint::Fixed};
   s.node_sets.push_back(wall);
   if (options.sliding_top) {
-    NodeSetSettings top;
-    top.name = "top";
-    top.selection.kind = SetSelection::Kind::Plane;
-    top.selection.plane_point_mm = {0, 0, 10};
-    top.selection.plane_normal = {0, 0, 1};
-    top.selection.plane_tolerance_mm = 1e-6;
-    top.constraint = Constraint::Sliding;
+    NodeSetSettings top{"top", grid_plane({0, 0, 10}, {0, 0, 1}), Constraint::Sliding};
     s.node_sets.push_back(top);
   }
-  FaceSetSettings skin;
-  skin.name = "skin";
-  skin.selection.kind = SetSelection::Kind::Plane;
-  skin.selection.plane_point_mm = {0, 0, 0};
-  skin.selection.plane_normal = {0, 1, 0};
-  skin.selection.plane_tolerance_mm = 1e-6;
+  FaceSetSettings skin{"skin", grid_plane({0, 0, 0}, {0, 1, 0})};
   s.face_sets.push_back(skin);
   s.gravity_direction = "prone";
   s.gravity_m_s2 = 9.81;
