@@ -121,12 +121,13 @@ std::vector<int> select_corner_nodes(const Model& m, const SetSelection& s,
   return {nodes.begin(), nodes.end()};
 }
 
-NodeSet make_node_set(const Model& m, const NodeSetSettings& settings) {
+// `faces` receives the triangles a `between` selection found (the tet10 step needs them).
+NodeSet make_node_set(const Model& m, const NodeSetSettings& settings, std::vector<std::array<int, 2>>& faces) {
   NodeSet set;
   set.name = settings.name;
   set.constraint = settings.constraint;
   set.selection = settings.selection.describe();
-  const auto faces = select_faces(m, settings.selection, settings.name);
+  faces = select_faces(m, settings.selection, settings.name);
   set.nodes = select_corner_nodes(m, settings.selection, faces);
   if (set.nodes.empty())
     throw InputError("model: node set '" + set.name + "' (" + set.selection + ") selects no node");
@@ -149,20 +150,28 @@ NodeSet make_node_set(const Model& m, const NodeSetSettings& settings) {
   return set;
 }
 
-// tet10: a midside node joins a node set when both ends of its edge are in it (the normal of a
-// sliding set is the mean of the two ends').
-void extend_to_midsides(const Model& m, NodeSet& set) {
+// tet10: the midside nodes that join a node set. For an interface (`between`) set, those of its
+// triangles: an edge joining two interface nodes may cut through the tissue, and its midside node
+// must then stay free. For plane and box sets, every edge with both ends in the set. A sliding
+// node's normal is the mean of its edge ends'.
+void extend_to_midsides(const Model& m, NodeSet& set, const std::vector<std::array<int, 2>>* faces) {
   std::unordered_map<int, std::size_t> pos;
   for (std::size_t i = 0; i < set.nodes.size(); ++i) pos[set.nodes[i]] = i;
   std::map<int, Eigen::Vector3d> added;
-  for (const auto& el : m.elements)
-    for (int k = 0; k < 6; ++k) {
-      auto a = pos.find(el[kEdges[k][0]]), b = pos.find(el[kEdges[k][1]]);
-      if (a == pos.end() || b == pos.end()) continue;
-      Eigen::Vector3d n = Eigen::Vector3d::Zero();
-      if (set.constraint == Constraint::Sliding) n = (set.normals[a->second] + set.normals[b->second]).normalized();
-      added.emplace(el[4 + k], n);
-    }
+  auto add = [&](const std::array<int, 10>& el, int k) {
+    auto a = pos.find(el[kEdges[k][0]]), b = pos.find(el[kEdges[k][1]]);
+    if (a == pos.end() || b == pos.end()) return;
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    if (set.constraint == Constraint::Sliding) n = (set.normals[a->second] + set.normals[b->second]).normalized();
+    added.emplace(el[4 + k], n);
+  };
+  if (faces) {
+    for (const auto& f : *faces)
+      for (int slot : face_midsides(f[1])) add(m.elements[f[0]], slot - 4);
+  } else {
+    for (const auto& el : m.elements)
+      for (int k = 0; k < 6; ++k) add(el, k);
+  }
   for (const auto& [v, n] : added) {
     set.nodes.push_back(v);
     if (set.constraint == Constraint::Sliding) set.normals.push_back(n);
@@ -289,7 +298,9 @@ Model build_model(const TetMesh& mesh, const ModelSettings& settings,
                        "' of the mesh has no material (add `materials: " + name + ": {...}`)");
     m.materials.push_back(it->second);
   }
-  for (const NodeSetSettings& s : settings.node_sets) m.node_sets.push_back(make_node_set(m, s));
+  std::vector<std::vector<std::array<int, 2>>> set_faces(settings.node_sets.size());
+  for (std::size_t i = 0; i < settings.node_sets.size(); ++i)
+    m.node_sets.push_back(make_node_set(m, settings.node_sets[i], set_faces[i]));
   for (const FaceSetSettings& s : settings.face_sets) {
     FaceSet set{s.name, select_faces(m, s.selection, s.name), s.selection.describe()};
     if (set.faces.empty())
@@ -302,7 +313,10 @@ Model build_model(const TetMesh& mesh, const ModelSettings& settings,
   m.analysis = settings.analysis;
   if (settings.element == ElementOrder::Quadratic) {
     make_quadratic(m);
-    for (NodeSet& s : m.node_sets) extend_to_midsides(m, s);
+    for (std::size_t i = 0; i < m.node_sets.size(); ++i) {
+      const bool interface = settings.node_sets[i].selection.kind == SetSelection::Kind::Between;
+      extend_to_midsides(m, m.node_sets[i], interface ? &set_faces[i] : nullptr);
+    }
   }
   drop_fixed_from_sliding(m);
   // After make_quadratic and the set extension, so that midside nodes are renumbered too.

@@ -74,9 +74,15 @@ SetSelection parse_selection(YamlMap& entry) {
     YAML::Node box = entry.raw("box_mm");
     if (!box.IsSequence() || box.size() != 6)
       throw InputError(entry.where("box_mm") + ": expected [xmin, ymin, zmin, xmax, ymax, zmax]");
-    for (int i = 0; i < 3; ++i) {
-      s.box_min_mm[i] = box[i].as<double>();
-      s.box_max_mm[i] = box[i + 3].as<double>();
+    for (int i = 0; i < 6; ++i) {
+      double v = 0.0;
+      try {
+        v = box[i].as<double>();
+      } catch (const YAML::Exception&) {
+        throw InputError(entry.where("box_mm") + ": expected 6 numbers, got '" + YAML::Dump(box[i]) + "'");
+      }
+      if (!std::isfinite(v)) throw InputError(entry.where("box_mm") + ": values must be finite");
+      (i < 3 ? s.box_min_mm[i] : s.box_max_mm[i - 3]) = v;
     }
     if (!(s.box_min_mm.array() <= s.box_max_mm.array()).all())
       throw InputError(entry.where("box_mm") + ": min must not exceed max");

@@ -33,12 +33,15 @@ std::string supported_list() {
   return out;
 }
 
-// Streams the text of a writer into `path`, failing with the path named.
+// Renders a writer's whole text first and only then creates `path`: a writer that refuses the
+// model leaves no empty or half-written file behind.
 template <typename Write>
 void write_text_file(const std::string& path, Write&& write) {
+  std::ostringstream text;
+  write(text);
   std::ofstream out(path, std::ios::binary);
   if (!out) throw OutputError("cannot open '" + path + "' for writing");
-  write(out);
+  out << text.str();
   out.flush();
   if (!out) throw OutputError("writing '" + path + "' failed (disk full?)");
 }

@@ -128,6 +128,7 @@ void build(const Model& model) {
 }  // namespace
 
 void write_gmsh(const Model& model, const std::string& path) {
+  validate_model(model);  // every writer refuses an invalid model first, also when called directly
   GmshSession session;
   try {
     build(model);

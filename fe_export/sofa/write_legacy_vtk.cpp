@@ -28,6 +28,7 @@ std::string title_line(const Model& model) {
 }  // namespace
 
 void write_legacy_vtk(const Model& model, std::ostream& out) {
+  validate_model(model);  // every writer refuses an invalid model first, also when called directly
   const std::size_t n_points = static_cast<std::size_t>(model.num_corner_nodes);
   const std::size_t n_cells = model.elements.size();
   std::string s;

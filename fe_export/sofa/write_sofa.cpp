@@ -156,6 +156,7 @@ ForceField force_field(const Model& model, std::size_t tissue) {
 }  // namespace
 
 std::vector<std::string> write_sofa(const Model& model, std::ostream& scene, const SofaOptions& options) {
+  validate_model(model);  // every writer refuses an invalid model first, also when called directly
   // ---- checks first: nothing is written for a model SOFA cannot take.
   const bool v25 = options.version == "25.06";
   if (!v25 && options.version != "24.06")
@@ -263,12 +264,12 @@ std::vector<std::string> write_sofa(const Model& model, std::ostream& scene, con
   out << "\"/>\n";
   for (const auto& [set, corners] : fixed) {
     out << "    <!-- fixed set " << set->name << ": " << xml_comment(set->selection) << " -->\n";
-    out << "    <FixedProjectiveConstraint name=\"" << set->name << "\" indices=\"" << ints(corners) << "\"/>\n";
+    out << "    <FixedProjectiveConstraint name=\"fixed_" << set->name << "\" indices=\"" << ints(corners) << "\"/>\n";
   }
   for (const SlidingPlane& p : planes) {
     const Eigen::Vector3d origin = p.origin_mm * length_from_mm(u, 1.0);  // as write_legacy_vtk
     out << "    <!-- sliding set " << p.set->name << ": " << xml_comment(p.set->selection) << " (n . u = 0) -->\n";
-    out << "    <PlaneProjectiveConstraint name=\"" << p.set->name << "\" indices=\"" << ints(p.corners)
+    out << "    <PlaneProjectiveConstraint name=\"sliding_" << p.set->name << "\" indices=\"" << ints(p.corners)
         << "\" origin=\"" << vec3(origin) << "\" normal=\"" << vec3(p.normal) << "\"/>\n";
   }
   for (std::size_t t = 0; t < n_tissues; ++t) {

@@ -41,6 +41,7 @@ vtkNew<vtkDoubleArray> tissue_cell_array(const Model& model, const char* name,
 }  // namespace
 
 void write_model_vtu(const Model& model, const std::string& path) {
+  validate_model(model);  // every writer refuses an invalid model first, also when called directly
   const std::size_t n_nodes = model.nodes.size();
   const std::size_t n_el = model.elements.size();
   const int npe = model.nodes_per_element();

@@ -270,6 +270,8 @@ TEST(ModelBuilder, SettingsErrorsNameTheKey) {
   EXPECT_NE(error("gravity: {acceleration: 9.81 kPa}").find("wrong kind of unit"), std::string::npos);
   EXPECT_NE(error("gravity: {acceleration: 9810 m/s^2}").find("check the unit"), std::string::npos);
   EXPECT_NE(error("analysis: {load_steps: 0}").find("analysis.load_steps"), std::string::npos);
+  EXPECT_NE(error("node_sets: [{name: a, box_mm: [0, 0, 0, 1, 1, wide]}]").find("box_mm: expected 6 numbers"),
+            std::string::npos);
 }
 
 TEST(ModelBuilder, BadSelectionsAndMissingMaterialsAreNamed) {
@@ -341,4 +343,24 @@ TEST(Quantity, ParsesUnitsAndRefusesConfusions) {
   EXPECT_NE(error("soft", Dimension::Stress).find("not a quantity"), std::string::npos);
   for (double v : {150.0, 9.81, 1e-6, 0.1 + 0.2, 50e3})
     EXPECT_EQ(parse_quantity(format_quantity(v, Dimension::Stress), Dimension::Stress, "k"), v);
+}
+
+TEST(ModelBuilder, Tet10InterfaceSetsTakeOnlyTheMidsidesOfTheirTriangles) {
+  // Kuhn diagonals at the box's edges join two boundary nodes through the interior (e.g.
+  // (18,0,0)-(20,2,2)): their midside nodes must not join an interface set.
+  ModelSettings s = test::block_settings({});
+  s.element = ElementOrder::Quadratic;
+  s.node_sets[0].selection.kind = SetSelection::Kind::Between;
+  s.node_sets[0].selection.side_a.tissues = {"tumor"};
+  s.node_sets[0].selection.side_b.outside = true;
+  const Model m = build_model(test::block_mesh(), s, test::block_materials(false), "t");
+  auto on_boundary = [](const Eigen::Vector3d& p) {
+    return p.x() == 20.0 || p.y() == 0.0 || p.y() == 10.0 || p.z() == 0.0 || p.z() == 10.0;
+  };
+  int midsides = 0;
+  for (int v : m.node_sets[0].nodes) {
+    EXPECT_TRUE(on_boundary(m.nodes[v])) << "node at (" << m.nodes[v].transpose() << ")";
+    midsides += v >= m.num_corner_nodes;
+  }
+  EXPECT_GT(midsides, 0);
 }

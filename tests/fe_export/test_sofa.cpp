@@ -176,7 +176,7 @@ TEST(SofaScene, FixedIndicesAreTheZeroBasedSetNodes) {
   const Scene s = write_scene(m);
   const auto fixed = all(s.root, "FixedProjectiveConstraint");
   ASSERT_EQ(fixed.size(), 1u);
-  EXPECT_EQ(attr(fixed[0], "name"), "chest_wall");
+  EXPECT_EQ(attr(fixed[0], "name"), "fixed_chest_wall");
   const std::vector<int> idx = integers(fixed[0], "indices");
   EXPECT_EQ(idx, set_named(m, "chest_wall").nodes);
   EXPECT_EQ(idx.size(), 66u);  // 11 x 6 grid nodes on the plane y = 10
@@ -329,7 +329,7 @@ TEST(SofaScene, PlanarSlidingSetBecomesAPlaneProjectiveConstraint) {
   const Scene s = write_scene(m);
   const auto planes = all(s.root, "PlaneProjectiveConstraint");
   ASSERT_EQ(planes.size(), 1u);
-  EXPECT_EQ(attr(planes[0], "name"), "top");
+  EXPECT_EQ(attr(planes[0], "name"), "sliding_top");
   EXPECT_EQ(integers(planes[0], "indices"), set_named(m, "top").nodes);
   EXPECT_EQ(numbers(planes[0], "normal"), (std::vector<double>{0, 0, 1}));
   const auto origin = numbers(planes[0], "origin");
@@ -386,7 +386,8 @@ TEST(SofaScene, Tet10IsWrittenAsItsCornersWithANote) {
     const auto c = all(s.root, name);
     ASSERT_EQ(c.size(), 1u);
     std::vector<int> corners;
-    for (int n : set_named(m, attr(c[0], "name")).nodes)
+    const std::string constraint = attr(c[0], "name");  // fixed_<set> / sliding_<set>
+    for (int n : set_named(m, constraint.substr(constraint.find('_') + 1)).nodes)
       if (n < m.num_corner_nodes) corners.push_back(n);
     EXPECT_EQ(integers(c[0], "indices"), corners) << name;
   }
