@@ -33,6 +33,14 @@ constexpr double kFlatInterfaceVolumeRel = 1e-6;
 /// size of the derivative separates a right formula from a wrong one (errors are O(1) then).
 constexpr double kFiniteDifferenceRel = 1e-7;
 
+/// Energy conjugacy along a finite path (solver element tests): Pi(u1) - Pi(u0) against the line
+/// integral of f_int . (u1 - u0), integrated by composite 2-point Gauss-Legendre on 100 panels.
+/// Its truncation is h^4/4320 times the integrand's 4th derivative, ~2e-12 of the integrand's
+/// scale for a smooth path with O(1) derivatives (h = 1/100); round-off over 200 terms ~1e-14.
+/// 1e-9 relative to the energy change leaves a 100x margin, while a force that is not the
+/// energy's gradient misses by O(1).
+constexpr double kPathIntegralRel = 1e-9;
+
 /// Reference values quoted to 6-7 significant digits (biomech.md §3.1: e.g. 501.419 Pa, 0.914705):
 /// half a unit in the last quoted digit is at most 1.0e-6 relative in those tables (501.419 Pa
 /// +- 0.0005); 2e-6 covers that rounding plus the bisection and round-off of the computed value
