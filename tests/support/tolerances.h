@@ -65,4 +65,30 @@ constexpr double kCalculixEquilibriumRel = 1e-5;
 /// node) with a factor 2 of margin.
 constexpr double kCalculixPrintRel = 1e-6;
 
+/// Built-in solver: residual tolerance the equilibrium tests ask for (model.analysis.residual_tolerance),
+/// relative to ||f_ext|| on the free dofs. The sum of all internal forces is zero to round-off (each
+/// element's f_int sums to zero: sum_a grad N_a = 0), so total reaction + weight = -(sum of the free
+/// residuals), at most sqrt(n_free) ||R|| <= sqrt(n_free) 1e-10 ||f_ext|| <= ~1e-10 W (||f_ext|| ~ W /
+/// sqrt(n)). Newton reaches it in one or two extra quadratic iterations; round-off of f_int on the
+/// block is ~1e-13 of the load, so 1e-10 is reachable and leaves 100x below kSolverEquilibriumRel.
+constexpr double kSolverTightResidualRel = 1e-10;
+
+/// Total reaction against total weight, relative: the issue #4 acceptance figure (1e-8). A wrong
+/// load (a missing tissue, a wrong density or unit) or a reaction taken without the load lumped on
+/// the fixed nodes misses by >= 1e-3.
+constexpr double kSolverEquilibriumRel = 1e-8;
+
+/// Built-in solver vs CalculiX on the same deck and energy: the issue #4 acceptance figure, max
+/// nodal difference <= 1% of the max displacement. Both solve the same discrete equations (same
+/// shape functions and quadrature, C3D4 1 point, C3D10 4 points), so the difference is only the
+/// convergence tolerance of each and ccx's 7 printed digits; measured values are printed.
+constexpr double kCalculixSolutionRel = 0.01;
+
+/// Linear response at tiny loads (gravity x 1e-6 and 3e-6): the nonlinear part of the response is
+/// of relative size ~ strain ~ 1e-6 here (the full-load strain is O(1)), and Newton reaches the
+/// residual tolerance 1e-6 of the load in one or two iterations of an almost linear problem, so the
+/// ratio of the two solutions equals the load ratio to ~1e-6; 1e-4 (issue brief) keeps a 100x margin
+/// while a load or stiffness that is not scaled consistently misses by O(1).
+constexpr double kSmallLoadLinearityRel = 1e-4;
+
 }  // namespace tissuemesh::test
