@@ -1,5 +1,7 @@
 #include "fe_export/febio/write_febio.h"
 
+#include "fe_export/text_format.h"
+
 #include "core/errors.h"
 #include "core/node_ordering.h"
 
@@ -19,74 +21,8 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Text helpers
 
-/// Shortest text that reads back to the same double (std::to_chars round trip); never "-0".
-std::string num(double v) {
-  if (v == 0.0) return "0";
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
-
-/// Decodes one UTF-8 code point at s[i] (advancing i); an invalid byte is taken as Latin-1.
-std::uint32_t next_code_point(const std::string& s, std::size_t& i) {
-  const auto b = static_cast<unsigned char>(s[i]);
-  int len = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xE ? 3 : (b >> 3) == 0x1E ? 4 : 0;
-  if (len == 0 || i + len > s.size()) return ++i, b;
-  std::uint32_t cp = len == 1 ? b : b & (0x7F >> len);
-  for (int k = 1; k < len; ++k) {
-    const auto c = static_cast<unsigned char>(s[i + k]);
-    if ((c >> 6) != 0x2) return ++i, b;
-    cp = (cp << 6) | (c & 0x3F);
-  }
-  i += len;
-  return cp;
-}
-
-bool xml_char(std::uint32_t cp) {
-  return cp == 0x9 || cp == 0xA || cp == 0xD || (cp >= 0x20 && cp <= 0xD7FF) || (cp >= 0xE000 && cp <= 0xFFFD) ||
-         (cp >= 0x10000 && cp <= 0x10FFFF);
-}
-
-/// Attribute / element text: markup characters escaped, non-ASCII as character references (the
-/// file declares ISO-8859-1), characters XML forbids replaced by '?'.
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (std::size_t i = 0; i < s.size();) {
-    const std::uint32_t cp = next_code_point(s, i);
-    switch (cp) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default:
-        if (!xml_char(cp)) out += '?';
-        else if (cp < 0x80) out += static_cast<char>(cp);
-        else {
-          std::ostringstream ref;
-          ref << "&#x" << std::hex << std::uppercase << cp << ';';
-          out += ref.str();
-        }
-    }
-  }
-  return out;
-}
-
-/// Comment text: ASCII only (references are not expanded in comments), no "--", no trailing '-'.
-std::string comment_text(const std::string& s) {
-  std::string out;
-  for (std::size_t i = 0; i < s.size();) {
-    const std::uint32_t cp = next_code_point(s, i);
-    const char c = (cp >= 0x20 && cp < 0x7F) ? static_cast<char>(cp) : (cp == '\t' || cp == '\n' ? ' ' : '?');
-    if (c == '-' && !out.empty() && out.back() == '-') out += ' ';
-    out += c;
-  }
-  if (!out.empty() && out.back() == '-') out += ' ';
-  return out;
-}
-
 void comment(std::ostream& out, const std::string& indent, const std::string& text) {
-  out << indent << "<!-- " << comment_text(text) << " -->\n";
+  out << indent << "<!-- " << xml_comment(text) << " -->\n";
 }
 
 /// FEBio's XMLReader copies attribute values into char[MAX_TAG = 128] buffers without a bounds
@@ -124,21 +60,21 @@ void write_control(std::ostream& out, const AnalysisSettings& a, const FebioOpti
   out << "  <Control>\n"
       << "    <analysis>STATIC</analysis>\n"
       << "    <time_steps>" << a.load_steps << "</time_steps>\n"
-      << "    <step_size>" << num(dt) << "</step_size>\n"
+      << "    <step_size>" << shortest_decimal(dt) << "</step_size>\n"
       << "    <plot_level>PLOT_MAJOR_ITRS</plot_level>\n"
       << "    <output_level>OUTPUT_MAJOR_ITRS</output_level>\n"
       << "    <time_stepper type=\"default\">\n"
       << "      <max_retries>5</max_retries>\n"
       << "      <opt_iter>10</opt_iter>\n"
-      << "      <dtmin>" << num(a.min_step_fraction) << "</dtmin>\n"
-      << "      <dtmax>" << num(dt) << "</dtmax>\n"
+      << "      <dtmin>" << shortest_decimal(a.min_step_fraction) << "</dtmin>\n"
+      << "      <dtmax>" << shortest_decimal(dt) << "</dtmax>\n"
       << "    </time_stepper>\n"
       << "    <solver type=\"solid\">\n"
       << "      <symmetric_stiffness>symmetric</symmetric_stiffness>\n"
       << "      <max_refs>" << a.max_newton_iterations << "</max_refs>\n"
-      << "      <dtol>" << num(a.displacement_tolerance) << "</dtol>\n"
-      << "      <etol>" << num(a.energy_tolerance) << "</etol>\n"
-      << "      <rtol>" << num(a.residual_tolerance) << "</rtol>\n"
+      << "      <dtol>" << shortest_decimal(a.displacement_tolerance) << "</dtol>\n"
+      << "      <etol>" << shortest_decimal(a.energy_tolerance) << "</etol>\n"
+      << "      <rtol>" << shortest_decimal(a.residual_tolerance) << "</rtol>\n"
       << "      <qn_method type=\"BFGS\">\n"
       << "        <max_ups>0</max_ups>\n"  // full Newton: the stiffness is reformed every iteration
       << "      </qn_method>\n";
@@ -150,17 +86,17 @@ void write_control(std::ostream& out, const AnalysisSettings& a, const FebioOpti
 
 void write_material(std::ostream& out, int id, const std::string& tissue, const MaterialSpec& m, UnitSystem u) {
   const std::string su = stress_unit(u);
-  auto stress = [&](double pa) { return num(stress_from_pascal(u, pa)); };
+  auto stress = [&](double pa) { return shortest_decimal(stress_from_pascal(u, pa)); };
   const char* type = m.law == MaterialLaw::Ogden                    ? "Ogden"
                      : m.law == MaterialLaw::CompressibleNeoHookean ? "neo-Hookean"
                                                                     : "Mooney-Rivlin";
   std::ostringstream what;
-  what << tissue << ": " << material_law_name(m.law) << ", mu = " << num(m.mu_Pa) << " Pa, K = " << num(m.K_Pa)
-       << " Pa, density " << num(m.density_kg_m3) << " kg/m^3 (written in " << su << ", "
+  what << tissue << ": " << material_law_name(m.law) << ", mu = " << shortest_decimal(m.mu_Pa) << " Pa, K = " << shortest_decimal(m.K_Pa)
+       << " Pa, density " << shortest_decimal(m.density_kg_m3) << " kg/m^3 (written in " << su << ", "
        << density_unit(u) << "); source: " << (m.source.empty() ? "not given" : m.source);
   comment(out, "    ", what.str());
   out << "    <material id=\"" << id << "\" name=\"" << xml_escape(tissue) << "\" type=\"" << type << "\">\n"
-      << "      <density>" << num(density_from_kg_per_m3(u, m.density_kg_m3)) << "</density>\n";
+      << "      <density>" << shortest_decimal(density_from_kg_per_m3(u, m.density_kg_m3)) << "</density>\n";
   switch (m.law) {
     case MaterialLaw::NeoHookean:
     case MaterialLaw::MooneyRivlin:
@@ -171,11 +107,11 @@ void write_material(std::ostream& out, int id, const std::string& tissue, const 
       for (std::size_t i = 0; i < m.ogden.size(); ++i)
         out << "      <c" << i + 1 << ">" << stress(2.0 * m.ogden[i].mu_Pa) << "</c" << i + 1 << ">\n";
       for (std::size_t i = 0; i < m.ogden.size(); ++i)
-        out << "      <m" << i + 1 << ">" << num(m.ogden[i].alpha) << "</m" << i + 1 << ">\n";
+        out << "      <m" << i + 1 << ">" << shortest_decimal(m.ogden[i].alpha) << "</m" << i + 1 << ">\n";
       break;
     case MaterialLaw::CompressibleNeoHookean:
       out << "      <E>" << stress(m.young_modulus_Pa()) << "</E>\n"
-          << "      <v>" << num(m.poisson_ratio()) << "</v>\n";
+          << "      <v>" << shortest_decimal(m.poisson_ratio()) << "</v>\n";
       break;
   }
   if (m.law != MaterialLaw::CompressibleNeoHookean)
@@ -313,7 +249,7 @@ void write_boundary(std::ostream& out, const Model& model, const SlidingPlan& pl
       out << "      <child_dof>\n"
           << "        <node>" << lc.node + 1 << "</node>\n"
           << "        <dof>" << kDof[dof] << "</dof>\n"
-          << "        <value>" << num(value) << "</value>\n"
+          << "        <value>" << shortest_decimal(value) << "</value>\n"
           << "      </child_dof>\n";
     out << "    </bc>\n";
   }
@@ -326,7 +262,7 @@ void write_loads(std::ostream& out, const Model& model) {
   Eigen::Vector3d a;
   for (int i = 0; i < 3; ++i) a[i] = acceleration_from_m_per_s2(u, g[i]);
   std::ostringstream c;
-  c << "gravity '" << model.gravity.name << "' = (" << num(a[0]) << ", " << num(a[1]) << ", " << num(a[2]) << ") "
+  c << "gravity '" << model.gravity.name << "' = (" << shortest_decimal(a[0]) << ", " << shortest_decimal(a[1]) << ", " << shortest_decimal(a[2]) << ") "
     << acceleration_unit(u)
     << " (LPS). FEBio's const body_load is the NEGATIVE of the acceleration field: the solid domain "
        "assembles -rho*b into the external force (formats.md 1.9; checked against CalculiX by a run), so the "
@@ -335,7 +271,7 @@ void write_loads(std::ostream& out, const Model& model) {
   comment(out, "    ", c.str());
   out << "    <body_load type=\"const\">\n";
   for (int i = 0; i < 3; ++i)
-    out << "      <" << kDof[i] << " lc=\"1\">" << num(-a[i]) << "</" << kDof[i] << ">\n";
+    out << "      <" << kDof[i] << " lc=\"1\">" << shortest_decimal(-a[i]) << "</" << kDof[i] << ">\n";
   out << "    </body_load>\n"
       << "  </Loads>\n";
 }
@@ -360,7 +296,7 @@ std::vector<std::string> collect_notes(const Model& model, const FebioOptions& o
       if (model.materials[t].K_Pa / model.materials[t].mu_Pa > worst)
         worst = model.materials[t].K_Pa / model.materials[t].mu_Pa, who = model.tissue_names[t];
     if (worst >= 10.0)
-      notes.push_back("FEBio: tet4 with nearly incompressible tissue ('" + who + "', K/mu = " + num(std::round(worst)) +
+      notes.push_back("FEBio: tet4 with nearly incompressible tissue ('" + who + "', K/mu = " + shortest_decimal(std::round(worst)) +
                       ") locks (too stiff); prefer tet10, or a SolidDomain type=\"ut4-solid\" / "
                       "\"three-field-solid\" (formats.md 1.5)");
   }
@@ -433,8 +369,8 @@ std::vector<std::string> write_febio(const Model& model, std::ostream& out, cons
       << "    <Nodes name=\"all\">\n";
   for (std::size_t i = 0; i < model.nodes.size(); ++i) {
     const Eigen::Vector3d& p = model.nodes[i];
-    out << "      <node id=\"" << i + 1 << "\">" << num(length_from_mm(u, p[0])) << ',' << num(length_from_mm(u, p[1]))
-        << ',' << num(length_from_mm(u, p[2])) << "</node>\n";
+    out << "      <node id=\"" << i + 1 << "\">" << shortest_decimal(length_from_mm(u, p[0])) << ',' << shortest_decimal(length_from_mm(u, p[1]))
+        << ',' << shortest_decimal(length_from_mm(u, p[2])) << "</node>\n";
   }
   out << "    </Nodes>\n";
   for (std::size_t t = 0; t < by_tissue.size(); ++t) {

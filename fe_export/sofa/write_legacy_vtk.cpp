@@ -1,18 +1,11 @@
 // Legacy VTK 4.2 ASCII unstructured grid for SOFA's MeshVTKLoader (formats.md §3.2, §5).
 #include "fe_export/sofa/write_sofa.h"
 
-#include <array>
-#include <charconv>
+#include "fe_export/text_format.h"
 
 namespace tissuemesh {
 
 namespace {
-
-std::string num(double v) {  // shortest round-trip decimal, locale-free
-  std::array<char, 32> buf{};
-  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), res.ptr);
-}
 
 // The header's title line: one line, at most 255 characters (VTK file format).
 std::string title_line(const Model& model) {
@@ -43,7 +36,7 @@ void write_legacy_vtk(const Model& model, std::ostream& out) {
   const double scale = length_from_mm(model.units, 1.0);
   for (std::size_t i = 0; i < n_points; ++i) {
     const Eigen::Vector3d& x = model.nodes[i];
-    s += num(x.x() * scale) + " " + num(x.y() * scale) + " " + num(x.z() * scale) + "\n";
+    s += shortest_decimal(x.x() * scale) + " " + shortest_decimal(x.y() * scale) + " " + shortest_decimal(x.z() * scale) + "\n";
   }
   s += "CELLS " + std::to_string(n_cells) + " " + std::to_string(5 * n_cells) + "\n";
   for (const auto& el : model.elements)

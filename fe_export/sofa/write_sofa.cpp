@@ -3,6 +3,7 @@
 #include "fe_export/sofa/write_sofa.h"
 
 #include "core/errors.h"
+#include "fe_export/text_format.h"
 
 #include <Eigen/Geometry>
 
@@ -16,40 +17,8 @@ namespace tissuemesh {
 
 namespace {
 
-// Shortest decimal that reads back as the same double (std::to_chars): exact and locale-free.
-std::string num(double v) {
-  std::array<char, 32> buf{};
-  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), res.ptr);
-}
-
-std::string vec3(const Eigen::Vector3d& v) { return num(v.x()) + " " + num(v.y()) + " " + num(v.z()); }
-
-std::string xml_attr(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
-// Text safe inside an XML comment: no "--", no line breaks.
-std::string xml_comment(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '\n' || c == '\r') c = ' ';
-    if (c == '-' && !out.empty() && out.back() == '-') out += ' ';
-    out += c;
-  }
-  if (!out.empty() && out.back() == '-') out += ' ';
-  return out;
+std::string vec3(const Eigen::Vector3d& v) {
+  return shortest_decimal(v.x()) + " " + shortest_decimal(v.y()) + " " + shortest_decimal(v.z());
 }
 
 // Plugin of every component the scene may use (formats.md §3.2; PlaneProjectiveConstraint is
@@ -136,7 +105,7 @@ struct ForceField {
 
 ForceField force_field(const Model& model, std::size_t tissue) {
   const MaterialSpec& m = model.materials[tissue];
-  auto stress = [&](double pa) { return num(stress_from_pascal(model.units, pa)); };
+  auto stress = [&](double pa) { return shortest_decimal(stress_from_pascal(model.units, pa)); };
   switch (m.law) {
     case MaterialLaw::CompressibleNeoHookean:  // exact: mu/2 (I1-3) - mu lnJ + lambda/2 (lnJ)^2
       return {"NeoHookean", stress(m.mu_Pa) + " " + stress(m.lambda_Pa())};
@@ -240,25 +209,25 @@ std::vector<std::string> write_sofa(const Model& model, std::ostream& scene, con
   if (v25) {
     // Absolute residual threshold 0 = off: an absolute force norm depends on the unit system.
     out << "    <NewtonRaphsonSolver name=\"newton\" maxNbIterationsNewton=\"" << a.max_newton_iterations
-        << "\" maxNbIterationsLineSearch=\"5\" relativeInitialStoppingThreshold=\"" << num(a.residual_tolerance)
+        << "\" maxNbIterationsLineSearch=\"5\" relativeInitialStoppingThreshold=\"" << shortest_decimal(a.residual_tolerance)
         << "\" absoluteResidualStoppingThreshold=\"0\"/>\n";
     out << "    <StaticSolver name=\"static\" newtonSolver=\"@newton\"/>\n";
   } else {
     // Thresholds <= 0 are off in v24 StaticSolver; the absolute ones depend on the unit system.
     out << "    <StaticSolver name=\"static\" newton_iterations=\"" << a.max_newton_iterations
-        << "\" relative_correction_tolerance_threshold=\"" << num(a.displacement_tolerance)
-        << "\" relative_residual_tolerance_threshold=\"" << num(a.residual_tolerance)
+        << "\" relative_correction_tolerance_threshold=\"" << shortest_decimal(a.displacement_tolerance)
+        << "\" relative_residual_tolerance_threshold=\"" << shortest_decimal(a.residual_tolerance)
         << "\" absolute_correction_tolerance_threshold=\"0\" absolute_residual_tolerance_threshold=\"0\"/>\n";
   }
   out << "    <SparseLDLSolver name=\"linear_solver\" template=\"CompressedRowSparseMatrixMat3x3d\"/>\n";
-  out << "    <MeshVTKLoader name=\"loader\" filename=\"" << xml_attr(options.mesh_file) << "\"/>\n";
+  out << "    <MeshVTKLoader name=\"loader\" filename=\"" << xml_escape(options.mesh_file) << "\"/>\n";
   out << "    <TetrahedronSetTopologyContainer name=\"topology\" src=\"@loader\"/>\n";
   out << "    <TetrahedronSetGeometryAlgorithms name=\"geometry\" template=\"Vec3d\"/>\n";
   out << "    <MechanicalObject name=\"dofs\" template=\"Vec3d\" src=\"@loader\"/>\n";
   out << "    <!-- massDensity: one value per tetrahedron (" << density_unit(u) << ") -->\n";
   out << "    <MeshMatrixMass name=\"mass\" topology=\"@topology\" massDensity=\"";
   std::vector<std::string> density(n_tissues);
-  for (std::size_t t = 0; t < n_tissues; ++t) density[t] = num(density_from_kg_per_m3(u, model.materials[t].density_kg_m3));
+  for (std::size_t t = 0; t < n_tissues; ++t) density[t] = shortest_decimal(density_from_kg_per_m3(u, model.materials[t].density_kg_m3));
   for (std::size_t e = 0; e < model.elements.size(); ++e)
     out << (e > 0 ? " " : "") << density[static_cast<std::size_t>(model.tissue_ids[e] - 1)];
   out << "\"/>\n";
