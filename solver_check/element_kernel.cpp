@@ -58,11 +58,51 @@ ElementResponse failed(ElementResponse r, ElementStatus status, int point) {
 
 }  // namespace
 
+ElementStatus element_geometry(ElementOrder order, const ElementNodes& X, ElementGeometry& geometry) {
+  check_rows(order, X, "X");
+  const QuadratureRule& rule = tet_stiffness_rule(order);
+  geometry.grad.clear();
+  geometry.dV.clear();
+  for (const QuadraturePoint& qp : rule) {
+    const ShapeGradients dNdxi = tet_shape_derivatives(order, qp.xi);
+    const Eigen::Matrix3d Jref = reference_jacobian(X, dNdxi);
+    const double det_ref = Jref.determinant();
+    if (!(det_ref > 0.0) || !std::isfinite(det_ref)) {
+      geometry.grad.clear();
+      geometry.dV.clear();
+      return ElementStatus::InvertedReference;
+    }
+    geometry.grad.push_back(dNdxi * Jref.inverse());  // dN_a/dX
+    geometry.dV.push_back(qp.weight * det_ref);
+  }
+  return ElementStatus::Ok;
+}
+
 ElementResponse element_response(ElementOrder order, const ElementNodes& X, const ElementNodes& u,
                                  const HyperelasticLaw& law, ElementOutput what) {
-  check_rows(order, X, "X");
   check_rows(order, u, "u");
-  const int n = tet_node_count(order);
+  ElementGeometry geometry;
+  ElementResponse r;
+  const ElementStatus status = element_geometry(order, X, geometry);
+  if (status != ElementStatus::Ok) {
+    // Find the failing point for the report (the geometry stops at the first one).
+    const int n = tet_node_count(order);
+    if (what != ElementOutput::Energy) r.force = ElementVector::Zero(3 * n);
+    if (what == ElementOutput::EnergyForceAndTangent) r.tangent = ElementMatrix::Zero(3 * n, 3 * n);
+    r.min_J = std::numeric_limits<double>::infinity();
+    const QuadratureRule& rule = tet_stiffness_rule(order);
+    int q = 0;
+    while (q < static_cast<int>(rule.size()) &&
+           reference_jacobian(X, tet_shape_derivatives(order, rule[q].xi)).determinant() > 0.0)
+      ++q;
+    return failed(r, status, q);
+  }
+  return element_response(geometry, u, law, what);
+}
+
+ElementResponse element_response(const ElementGeometry& geometry, const ElementNodes& u, const HyperelasticLaw& law,
+                                 ElementOutput what) {
+  const int n = static_cast<int>(u.rows());
   const bool want_force = what != ElementOutput::Energy;
   const bool want_tangent = what == ElementOutput::EnergyForceAndTangent;
 
@@ -71,13 +111,9 @@ ElementResponse element_response(ElementOrder order, const ElementNodes& X, cons
   if (want_tangent) r.tangent = ElementMatrix::Zero(3 * n, 3 * n);
   r.min_J = std::numeric_limits<double>::infinity();
 
-  const QuadratureRule& rule = tet_stiffness_rule(order);
-  for (int q = 0; q < static_cast<int>(rule.size()); ++q) {
-    const ShapeGradients dNdxi = tet_shape_derivatives(order, rule[q].xi);
-    const Eigen::Matrix3d Jref = reference_jacobian(X, dNdxi);
-    const double det_ref = Jref.determinant();
-    if (!(det_ref > 0.0) || !std::isfinite(det_ref)) return failed(r, ElementStatus::InvertedReference, q);
-    const ShapeGradients G = dNdxi * Jref.inverse();  // dN_a/dX
+  for (int q = 0; q < static_cast<int>(geometry.dV.size()); ++q) {
+    const ShapeGradients& G = geometry.grad[q];
+    if (G.rows() != n) throw std::invalid_argument("element kernel: geometry and u differ in node count");
     const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + u.transpose() * G;
     if (!F.allFinite()) return failed(r, ElementStatus::NonFinite, q);
     const double J = F.determinant();
@@ -85,7 +121,7 @@ ElementResponse element_response(ElementOrder order, const ElementNodes& X, cons
     if (!(J > 0.0)) return failed(r, ElementStatus::Inverted, q);
 
     const Eigen::Matrix3d C = F.transpose() * F;
-    const double dV = rule[q].weight * det_ref;
+    const double dV = geometry.dV[q];
     const double W = law.energy(C);
     if (!std::isfinite(W)) return failed(r, ElementStatus::NonFinite, q);
     r.energy += W * dV;

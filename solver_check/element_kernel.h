@@ -32,8 +32,11 @@
 
 #include "core/model.h"
 #include "materials/hyperelastic_law.h"
+#include "solver_check/tet_shape.h"
 
 #include <Eigen/Core>
+
+#include <vector>
 
 namespace tissuemesh {
 
@@ -67,6 +70,23 @@ struct ElementResponse {
 /// Energy, internal force and tangent of one element at displacement u (see the header comment).
 /// Throws std::invalid_argument only when X or u does not have tet_node_count(order) rows.
 ElementResponse element_response(ElementOrder order, const ElementNodes& X, const ElementNodes& u,
+                                 const HyperelasticLaw& law,
+                                 ElementOutput what = ElementOutput::EnergyForceAndTangent);
+
+/// What element_response needs of the reference element at each stiffness quadrature point: the
+/// physical shape-function gradients dN/dX (n x 3, 1/length) and the volume weight
+/// w_q det(dX/dxi) (length^3). Constant during a solve, so the solver computes it once.
+struct ElementGeometry {
+  std::vector<ShapeGradients> grad;  ///< one per point of tet_stiffness_rule(order)
+  std::vector<double> dV;            ///< same length
+};
+
+/// The geometry of element X; status InvertedReference (geometry left empty) when det(dX/dxi) <= 0
+/// or is not finite at a point. Throws std::invalid_argument on a wrong row count.
+ElementStatus element_geometry(ElementOrder order, const ElementNodes& X, ElementGeometry& geometry);
+
+/// element_response from precomputed geometry (u: one row per node, as above).
+ElementResponse element_response(const ElementGeometry& geometry, const ElementNodes& u,
                                  const HyperelasticLaw& law,
                                  ElementOutput what = ElementOutput::EnergyForceAndTangent);
 

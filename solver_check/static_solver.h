@@ -9,32 +9,47 @@
 //
 // Problem: find u with  R(u) = lambda f_ext - f_int(u) = 0  on the free dofs, lambda = 1 at the
 // end. f_ext is the consistent body force int N rho g dV over the reference volume (dead load);
-// f_int and the tangent K = d f_int / du come from element_response (solver_check/element_kernel.h).
-// Assembly is serial, in element order, so the result is bit-for-bit deterministic.
+// f_int and the tangent K = d f_int / du come from the element kernel (solver_check/element_kernel.h).
 //
-// Constraints: every dof of a node in a Fixed node set is eliminated (u = 0). Sliding node sets
-// are NOT supported yet: solve_static throws SolverError ("not supported yet") for a model that
-// has one.
+// Constraints (solver_check/dof_map.h): a node of a Fixed set has u = 0; a node of a Sliding set
+// moves only tangentially, n . u = 0 for each of its sets' normals (two sliding sets at a node
+// leave the line along n1 x n2, three or a fixed set leave nothing); a node in
+// SolveOptions::prescribed follows lambda * value in all three components (overrides the sets).
+// The solver works in each node's reduced basis (the unconstrained directions), so constraints
+// are exact and the tangent stays symmetric positive definite where the material is stable.
 //
 // Algorithm (settings from model.analysis, see core/model.h AnalysisSettings):
 // - load stepping: starts with load_steps equal increments; an increment that fails (Newton
 //   diverges or produces a non-finite value, an element inverts (J <= 0), the linear solve fails,
 //   or more than max_newton_iterations are needed) is retried with half the increment; the
 //   increment never drops below min_step_fraction (then the solve stops, converged = false).
-//   After two successive accepted increments the increment doubles again, up to the initial one.
+//   An increment that converged in at most 4 Newton iterations doubles the next one (up to the
+//   rest of the load): load_steps sets the first increment, not the number of increments.
 //   At most max_load_steps increments are attempted, cut-backs included.
-// - Newton-Raphson with the consistent tangent, solved by Eigen::SimplicialLDLT on the free dofs
-//   (lower triangle; the sparsity pattern is analysed once and reused for every factorisation);
-//   backtracking line search on the residual norm: step lengths 1, 1/2, ... 1/16, the first that
-//   lowers ||R|| (and keeps every element un-inverted) is taken; when none lowers it the
-//   un-inverted trial with the smallest ||R|| is taken.
-// - convergence of an increment: ||R_free|| <= residual_tolerance * ||lambda f_ext,free|| AND
-//   ||delta u_free|| <= displacement_tolerance * ||u_free|| for the last correction
-//   (energy_tolerance is FEBio's and not used here).
+// - Newton-Raphson with the consistent tangent, solved by CHOLMOD's supernodal Cholesky when the
+//   build has it (Eigen::CholmodSupernodalLLT), else Eigen::SimplicialLDLT; the sparsity pattern
+//   is analysed (fill-reducing ordering, symbolic factorisation) once and reused by every
+//   factorisation. A tangent CHOLMOD finds indefinite (unstable material state) is factorised by
+//   LDLT instead for that iteration. Backtracking line search on the residual norm: step lengths
+//   1, 1/2, ... 1/16, the first that lowers ||R|| (and keeps every element un-inverted) is taken;
+//   when none lowers it the un-inverted trial with the smallest ||R|| is taken.
+// - each increment starts from a secant prediction (the last increment's change, scaled), or
+//   from the last accepted state when that prediction inverts an element or after a cut-back.
+// - convergence of an increment: ||R_free|| <= residual_tolerance * max(||lambda f_ext||,
+//   ||f_int||) (norms over all dofs: the load's scale under gravity, the reactions' scale for a
+//   prescribed motion without load) AND ||delta q|| <= displacement_tolerance * ||q|| for the last
+//   correction, q the reduced unknowns (energy_tolerance is FEBio's and not used here).
+// - assembly runs in parallel over elements (OpenMP) into a precomputed sparsity pattern: the
+//   elements are coloured so that no two of one colour share a node, each colour is scattered in
+//   parallel and the colours in a fixed order, so every matrix entry is summed in the same order
+//   whatever the thread count: results are bit-for-bit deterministic.
 //
-// Refused up front (nothing solved): anything validate_model refuses (InputError); no Fixed node
-// set, or Fixed sets without nodes (InputError: the model would float); a tissue with zero or
-// negative density (InputError naming it); an inverted reference element (SolverError).
+// Refused up front (nothing solved): anything validate_model refuses (InputError); a model with no
+// constraint at all (no Fixed set with nodes and nothing prescribed: InputError, it would float);
+// a tissue with zero or negative density (InputError naming it); an inverted reference element
+// (SolverError); a prescribed node index out of range or a non-finite prescribed value
+// (InputError). Sliding sets alone are accepted when they hold the model (a singular tangent then
+// fails the linear solve and is reported).
 // A solve that cannot finish does not throw: converged = false, message says why, and the
 // displacements/reactions are those of the last accepted increment (never NaN).
 #pragma once
@@ -43,14 +58,22 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace tissuemesh {
 
-struct SolveOptions {
-  /// Multiplies the model's gravity (1 = as in the model). Used e.g. for small-load linear checks.
-  double gravity_scale = 1.0;
+/// A node whose displacement is imposed: u = lambda * value (model length unit) in all components.
+struct PrescribedDisplacement {
+  int node = 0;  ///< 0-based model node index
+  Eigen::Vector3d value = Eigen::Vector3d::Zero();
+};
+
+enum class LinearSolverKind {
+  Auto,            ///< CHOLMOD supernodal when built with it, else SimplicialLDLT
+  Cholmod,         ///< CHOLMOD supernodal LLT (SolverError when the build lacks it)
+  SimplicialLDLT,  ///< Eigen's own sparse LDL^T
 };
 
 /// One attempted load increment.
@@ -58,10 +81,25 @@ struct StepRecord {
   double load_fraction = 0.0;  ///< lambda at the end of the increment (the target of the attempt)
   double increment = 0.0;      ///< delta lambda of the attempt
   int iterations = 0;          ///< Newton iterations performed
-  /// ||R_free|| / ||lambda f_ext,free|| after each iteration (first entry: before any iteration).
+  /// ||R_free|| / max(||lambda f_ext||, ||f_int||) after each iteration (first entry: before any).
   std::vector<double> residual_norms;
+  /// Line-search step length taken in each iteration (1 = full Newton step).
+  std::vector<double> step_lengths;
   bool accepted = false;       ///< false: cut back (see note)
   std::string note;            ///< why it was cut ("inverted element 12", "diverged", ...)
+  double seconds = 0.0;        ///< wall time of the attempt
+};
+
+struct SolveOptions {
+  /// Multiplies the model's gravity (1 = as in the model). Used e.g. for small-load linear checks.
+  double gravity_scale = 1.0;
+  /// Imposed displacements (ramped with the load). Empty for the usual gravity solve.
+  std::vector<PrescribedDisplacement> prescribed;
+  LinearSolverKind linear_solver = LinearSolverKind::Auto;
+  /// Threads for assembly (and CHOLMOD's BLAS is left as configured); 0 = OpenMP's default.
+  int threads = 0;
+  /// Called after every attempted increment, e.g. to print progress; may be empty.
+  std::function<void(const StepRecord&)> on_step;
 };
 
 struct NodeReaction {
@@ -75,17 +113,27 @@ struct SolveResult {
   double load_fraction = 0.0;  ///< last accepted lambda
   /// Per model node, length unit of model.units (the last accepted state if not converged).
   std::vector<Eigen::Vector3d> displacements;
-  /// Reactions at the nodes of the Fixed sets, sorted by node: f_int - lambda f_ext there, so that
-  /// sum of reactions + lambda * total_load = 0 at equilibrium. Model force unit.
+  /// Reactions at every constrained node (fixed, sliding or prescribed), sorted by node: the
+  /// constrained components of f_int - lambda f_ext there (a sliding node's reaction is along its
+  /// normal(s)), so that sum of reactions + lambda * total_load = 0 at equilibrium. Force unit.
   std::vector<NodeReaction> reactions;
   Eigen::Vector3d total_reaction = Eigen::Vector3d::Zero();
   Eigen::Vector3d total_load = Eigen::Vector3d::Zero();  ///< sum of f_ext at lambda = 1 (weight)
   std::vector<StepRecord> steps;  ///< every attempted increment, in order
   int total_iterations = 0;
+  int free_dofs = 0;              ///< unknowns after constraints
+  std::string linear_solver;      ///< "CHOLMOD supernodal LLT" or "Eigen SimplicialLDLT"
+  int threads = 1;                ///< assembly threads used
+  int indefinite_fallbacks = 0;   ///< factorisations CHOLMOD refused as indefinite (then LDL^T)
+  double assembly_seconds = 0.0;  ///< wall time in element evaluation and assembly
+  double linear_solve_seconds = 0.0;  ///< wall time in factorisation and solves
   double seconds = 0.0;           ///< wall time of the solve
 };
 
 /// Solves model under its gravity (scaled by options.gravity_scale). See the header comment.
 SolveResult solve_static(const Model& model, const SolveOptions& options = {});
+
+/// True when this build links CHOLMOD (SuiteSparse).
+bool cholmod_available();
 
 }  // namespace tissuemesh

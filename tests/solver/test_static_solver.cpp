@@ -48,7 +48,9 @@ void expect_no_nan(const SolveResult& r) {
 SolveResult solve_and_report(const Model& model, const std::string& what) {
   const SolveResult r = solve_static(model);
   std::cout << "[ solver   ] " << what << ": " << model.nodes.size() << " nodes, " << model.elements.size()
-            << " elements, " << r.seconds << " s, " << r.message << "\n";
+            << " elements, " << r.seconds << " s (assembly " << r.assembly_seconds << " s, linear solves "
+            << r.linear_solve_seconds << " s, " << r.linear_solver << ", " << r.threads << " threads), " << r.message
+            << "\n";
   ::testing::Test::RecordProperty("solver_seconds_" + what, std::to_string(r.seconds));
   return r;
 }
@@ -113,9 +115,9 @@ class AgainstCalculix : public ::testing::TestWithParam<ElementOrder> {
   }
 };
 
-TEST_P(AgainstCalculix, SameDisplacementsWithinOnePercent) {
-  const Model model = block(GetParam());
-  const std::string job = std::string("solver_vs_ccx_") + name(GetParam());
+/// Runs ccx on `model`'s deck and checks the built-in result `r` against it (max nodal difference
+/// within kCalculixSolutionRel of the max displacement); prints the figures.
+void expect_same_as_calculix(const Model& model, const SolveResult& r, const std::string& job) {
   const std::filesystem::path inp = test::scratch_dir() / (job + ".inp");
   {
     std::ofstream out(inp);
@@ -127,7 +129,6 @@ TEST_P(AgainstCalculix, SameDisplacementsWithinOnePercent) {
   const DatBlock& ccx = last_block(blocks, "displacements", "NALL");
   ASSERT_EQ(ccx.values.size(), model.nodes.size());
 
-  const SolveResult& r = default_solve(GetParam());
   ASSERT_TRUE(r.converged) << r.message;
   double max_u = 0.0, max_diff = 0.0, sum_diff = 0.0;
   for (std::size_t i = 0; i < model.nodes.size(); ++i) {
@@ -138,13 +139,17 @@ TEST_P(AgainstCalculix, SameDisplacementsWithinOnePercent) {
     sum_diff += d;
   }
   const double ratio = max_diff / max_u;
-  std::cout << "[ solver   ] " << name(GetParam()) << " vs ccx: max |u| " << max_u << " mm (built-in "
-            << max_norm(r.displacements) << "), max diff/max |u| " << ratio << ", mean diff/max |u| "
-            << sum_diff / model.nodes.size() / max_u << "; ccx " << run.seconds << " s, built-in " << r.seconds
-            << " s\n";
-  ::testing::Test::RecordProperty("max_diff_ratio_" + std::string(name(GetParam())), std::to_string(ratio));
+  std::cout << "[ solver   ] " << job << ": max |u| " << max_u << " mm (built-in " << max_norm(r.displacements)
+            << "), max diff/max |u| " << ratio << ", mean diff/max |u| " << sum_diff / model.nodes.size() / max_u
+            << "; ccx " << run.seconds << " s, built-in " << r.seconds << " s\n";
+  ::testing::Test::RecordProperty("max_diff_ratio_" + job, std::to_string(ratio));
   ASSERT_GT(max_u, 0.0);
   EXPECT_LE(ratio, test::kCalculixSolutionRel);
+}
+
+TEST_P(AgainstCalculix, SameDisplacementsWithinOnePercent) {
+  expect_same_as_calculix(block(GetParam()), default_solve(GetParam()),
+                          std::string("solver_vs_ccx_") + name(GetParam()));
 }
 
 INSTANTIATE_TEST_SUITE_P(Block, AgainstCalculix, ::testing::Values(ElementOrder::Linear, ElementOrder::Quadratic),
@@ -194,7 +199,7 @@ TEST(Refusal, ModelWithoutFixedSet) {
   Model model = test::block_model();
   model.node_sets.clear();
   const std::string m = refusal<InputError>(model);
-  EXPECT_NE(m.find("no fixed node set"), std::string::npos) << m;
+  EXPECT_NE(m.find("no fixed or sliding node set"), std::string::npos) << m;
 }
 
 TEST(Refusal, TissueWithZeroDensity) {
@@ -205,12 +210,57 @@ TEST(Refusal, TissueWithZeroDensity) {
   EXPECT_NE(m.find("density"), std::string::npos) << m;
 }
 
-TEST(Refusal, SlidingSetIsNotSupportedYet) {
-  test::BlockModelOptions options;
-  options.sliding_top = true;
-  const std::string m = refusal<SolverError>(test::block_model(options));
-  EXPECT_NE(m.find("not supported yet"), std::string::npos) << m;
-  EXPECT_NE(m.find("top"), std::string::npos) << m;
+// The block with its top face (z = 10) on frictionless rollers: the top nodes stay in their plane,
+// their reactions act along the normal only, the weight is still balanced, and CalculiX (the same
+// constraint as *EQUATION) gives the same displacements.
+class SlidingTop : public ::testing::Test {
+ protected:
+  static Model model() {
+    test::BlockModelOptions options;
+    options.sliding_top = true;
+    return test::block_model(options);
+  }
+  static const SolveResult& solved() {
+    static const SolveResult r = [] {
+      Model m = model();
+      m.analysis.residual_tolerance = test::kSolverTightResidualRel;
+      return solve_and_report(m, "sliding_top_tet4");
+    }();
+    return r;
+  }
+};
+
+TEST_F(SlidingTop, TopNodesStayInTheirPlaneAndReactAlongTheNormal) {
+  const Model m = model();
+  const SolveResult& r = solved();
+  ASSERT_TRUE(r.converged) << r.message;
+  expect_no_nan(r);
+  const NodeSet& top = m.node_sets.at(1);
+  ASSERT_EQ(top.constraint, Constraint::Sliding);
+  const double scale = max_norm(r.displacements);
+  ASSERT_GT(scale, 0.0);
+  std::map<int, Eigen::Vector3d> reaction;
+  for (const NodeReaction& f : r.reactions) reaction[f.node] = f.force;
+  const std::vector<int>& fixed = m.node_sets.at(0).nodes;
+  bool some_top_node_moves = false;
+  for (int v : top.nodes) {
+    // Exact constraint: n . u = 0 to round-off of the basis (unit vectors to ~1e-16).
+    EXPECT_NEAR(r.displacements[v].z(), 0.0, test::kRelativeRoundoff * scale) << v;
+    some_top_node_moves = some_top_node_moves || r.displacements[v].norm() > 0.1 * scale;
+    if (std::binary_search(fixed.begin(), fixed.end(), v)) continue;  // also fixed: full reaction
+    ASSERT_TRUE(reaction.count(v)) << v;
+    EXPECT_NEAR(reaction[v].x(), 0.0, test::kRelativeRoundoff * r.total_load.norm()) << v;
+    EXPECT_NEAR(reaction[v].y(), 0.0, test::kRelativeRoundoff * r.total_load.norm()) << v;
+  }
+  EXPECT_TRUE(some_top_node_moves) << "the rollers let the top face slide under gravity";
+  const Eigen::Vector3d imbalance = r.total_reaction + r.total_load;
+  std::cout << "[ solver   ] sliding top: relative imbalance " << imbalance.norm() / r.total_load.norm() << "\n";
+  EXPECT_LE(imbalance.norm(), test::kSolverEquilibriumRel * r.total_load.norm());
+}
+
+TEST_F(SlidingTop, SameDisplacementsAsCalculix) {
+  if (find_calculix().empty()) GTEST_SKIP() << "ccx not found (set TISSUEMESH_CCX or put ccx on PATH)";
+  expect_same_as_calculix(model(), solved(), "solver_vs_ccx_sliding_tet4");
 }
 
 TEST(Failure, CutBacksThatCannotCureAreReportedWithoutNaN) {

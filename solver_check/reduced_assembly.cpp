@@ -1,0 +1,175 @@
+#include "solver_check/reduced_assembly.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+namespace tissuemesh {
+
+namespace {
+
+/// Reduced dofs of an element's nodes, node-major: (global reduced index, node slot a, column k).
+struct LocalDofs {
+  int count = 0;
+  int global[30];
+  int node[30];
+  int column[30];
+};
+
+LocalDofs local_dofs(const std::array<int, 10>& element, int n, const DofMap& dofs) {
+  LocalDofs d;
+  for (int a = 0; a < n; ++a) {
+    const int v = element[a];
+    for (int k = 0; k < dofs.count(v); ++k) {
+      d.global[d.count] = dofs.first(v) + k;
+      d.node[d.count] = a;
+      d.column[d.count] = k;
+      ++d.count;
+    }
+  }
+  return d;
+}
+
+/// Elements per parallel chunk: large enough that one synchronisation per chunk is negligible,
+/// small enough that the chunk's buffer (up to 465 doubles per tet10) stays a few tens of MB.
+constexpr int kChunk = 8192;
+
+}  // namespace
+
+ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::array<int, 10>>& elements,
+                                 const std::vector<ElementGeometry>& geometry,
+                                 const std::vector<const HyperelasticLaw*>& law, const DofMap& dofs, int threads)
+    : n_(order == ElementOrder::Linear ? 4 : 10),
+      elements_(elements),
+      geometry_(geometry),
+      law_(law),
+      dofs_(dofs),
+      threads_(threads > 0 ? threads : omp_get_max_threads()) {
+  const int num_nodes = dofs.num_nodes();
+  const int ne = static_cast<int>(elements.size());
+
+  // Node graph (each node with itself and every node it shares an element with), sorted.
+  std::vector<std::vector<int>> adjacent(num_nodes);
+  for (int e = 0; e < ne; ++e)
+    for (int a = 0; a < n_; ++a) {
+      for (int b = 0; b < n_; ++b) adjacent[elements[e][a]].push_back(elements[e][b]);
+    }
+  for (auto& list : adjacent) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+
+  // Column-major lower pattern: column of dof (v, k) holds the dofs of adjacent nodes w >= v
+  // (components >= k for w = v). Reduced dofs are numbered node by node, so rows come sorted.
+  const int nf = dofs.num_free();
+  std::vector<int> outer(nf + 1, 0);
+  std::vector<int> inner;
+  for (int v = 0; v < num_nodes; ++v)
+    for (int k = 0; k < dofs.count(v); ++k) {
+      const int column = dofs.first(v) + k;
+      for (int w : adjacent[v]) {
+        if (w < v) continue;
+        for (int l = (w == v ? k : 0); l < dofs.count(w); ++l) inner.push_back(dofs.first(w) + l);
+      }
+      outer[column + 1] = static_cast<int>(inner.size());
+    }
+  K_.resize(nf, nf);
+  K_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), K_.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), K_.innerIndexPtr());
+  std::fill(K_.valuePtr(), K_.valuePtr() + inner.size(), 0.0);
+
+  // Value slot of every lower pair (i >= j, local order) of each element's reduced dofs.
+  slot_start_.assign(ne + 1, 0);
+  for (int e = 0; e < ne; ++e) {
+    const LocalDofs d = local_dofs(elements[e], n_, dofs);
+    for (int i = 0; i < d.count; ++i)
+      for (int j = 0; j <= i; ++j) {
+        const int r = std::max(d.global[i], d.global[j]), c = std::min(d.global[i], d.global[j]);
+        const int* begin = inner.data() + outer[c];
+        const int* end = inner.data() + outer[c + 1];
+        slots_.push_back(static_cast<int>(std::lower_bound(begin, end, r) - inner.data()));
+      }
+    slot_start_[e + 1] = static_cast<int>(slots_.size());
+  }
+
+}
+
+ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool with_tangent) {
+  Result out;
+  out.f_int = Eigen::VectorXd::Zero(u.size());
+  if (with_tangent) std::fill(K_.valuePtr(), K_.valuePtr() + K_.nonZeros(), 0.0);
+  double* values = K_.valuePtr();
+  const ElementOutput what = with_tangent ? ElementOutput::EnergyForceAndTangent : ElementOutput::EnergyAndForce;
+  const int ne = static_cast<int>(elements_.size());
+  const int nf = 3 * n_;
+
+  for (int start = 0; start < ne; start += kChunk) {
+    const int end = std::min(ne, start + kChunk);
+    const int base = slot_start_[start];
+    if (with_tangent) buffer_.resize(slot_start_[end] - base);
+    forces_.resize(static_cast<std::size_t>(end - start) * nf);
+    int failed_element = std::numeric_limits<int>::max();
+    ElementResponse failure;
+#pragma omp parallel num_threads(threads_)
+    {
+      ElementNodes ue(n_, 3);
+#pragma omp for schedule(dynamic, 64)
+      for (int e = start; e < end; ++e) {
+        const std::array<int, 10>& element = elements_[e];
+        for (int a = 0; a < n_; ++a) ue.row(a) = u.segment<3>(3 * element[a]).transpose();
+        ElementResponse r = element_response(geometry_[e], ue, *law_[e], what);
+        if (!r.ok()) {
+#pragma omp critical(tissuemesh_assembly_failure)
+          if (e < failed_element) {
+            failed_element = e;
+            failure = std::move(r);
+          }
+          continue;
+        }
+        std::copy(r.force.data(), r.force.data() + nf, forces_.data() + static_cast<std::size_t>(e - start) * nf);
+        if (!with_tangent) continue;
+        // Lower triangle of the reduced element matrix T^T K T (T: block-diagonal node bases,
+        // identity for free nodes), in the slot order.
+        const LocalDofs d = local_dofs(element, n_, dofs_);
+        double* m = buffer_.data() + (slot_start_[e] - base);
+        for (int i = 0, p = 0; i < d.count; ++i) {
+          const int a = d.node[i];
+          const bool plain_a = dofs_.unconstrained(element[a]);
+          for (int j = 0; j <= i; ++j, ++p) {
+            const int b = d.node[j];
+            if (plain_a && dofs_.unconstrained(element[b])) {
+              m[p] = r.tangent(3 * a + d.column[i], 3 * b + d.column[j]);
+            } else {
+              const Eigen::Vector3d ta = dofs_.basis(element[a]).col(d.column[i]);
+              const Eigen::Vector3d tb = dofs_.basis(element[b]).col(d.column[j]);
+              m[p] = ta.dot(r.tangent.block<3, 3>(3 * a, 3 * b) * tb);
+            }
+          }
+        }
+      }
+    }
+    if (failed_element != std::numeric_limits<int>::max()) {
+      out.ok = false;
+      std::ostringstream note;
+      note << (failure.status == ElementStatus::Inverted ? "inverted element " : "non-finite response in element ")
+           << failed_element << " (min J " << failure.min_J << ")";
+      out.note = note.str();
+      return out;
+    }
+    // Serial scatter in element order: the same summation order for any thread count.
+    for (int e = start; e < end; ++e) {
+      const double* f = forces_.data() + static_cast<std::size_t>(e - start) * nf;
+      for (int a = 0; a < n_; ++a)
+        for (int i = 0; i < 3; ++i) out.f_int[3 * elements_[e][a] + i] += f[3 * a + i];
+      if (!with_tangent) continue;
+      const double* m = buffer_.data() + (slot_start_[e] - base);
+      for (int p = slot_start_[e]; p < slot_start_[e + 1]; ++p) values[slots_[p]] += m[p - slot_start_[e]];
+    }
+  }
+  return out;
+}
+
+}  // namespace tissuemesh
