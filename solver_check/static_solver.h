@@ -26,11 +26,11 @@
 //   An increment that converged in at most 4 Newton iterations doubles the next one (up to the
 //   rest of the load): load_steps sets the first increment, not the number of increments.
 //   At most max_load_steps increments are attempted, cut-backs included.
-// - Newton-Raphson with the consistent tangent, solved by CHOLMOD's supernodal Cholesky when the
-//   build has it (Eigen::CholmodSupernodalLLT), else Eigen::SimplicialLDLT; the sparsity pattern
-//   is analysed (fill-reducing ordering, symbolic factorisation) once and reused by every
-//   factorisation. A tangent CHOLMOD finds indefinite (unstable material state) is factorised by
-//   LDLT instead for that iteration. Backtracking line search on the residual norm: step lengths
+// - Newton-Raphson with the consistent tangent. Each direction solves K dq = R to a relative
+//   residual of 1e-4 (solver_check/linear_solver.h): conjugate gradients preconditioned by the
+//   last factorisation of the tangent, and a new factorisation (CHOLMOD's supernodal Cholesky
+//   when the build has it, else Eigen::SimplicialLDLT; symbolic analysis done once) only when CG
+//   does not get there in 25 iterations. Backtracking line search on the residual norm: step lengths
 //   1, 1/2, ... 1/16, the first that lowers ||R|| (and keeps every element un-inverted) is taken;
 //   when none lowers it the un-inverted trial with the smallest ||R|| is taken.
 // - each increment starts from a secant prediction (the last increment's change, scaled), or
@@ -124,7 +124,9 @@ struct SolveResult {
   int free_dofs = 0;              ///< unknowns after constraints
   std::string linear_solver;      ///< "CHOLMOD supernodal LLT" or "Eigen SimplicialLDLT"
   int threads = 1;                ///< assembly threads used
-  int indefinite_fallbacks = 0;   ///< factorisations CHOLMOD refused as indefinite (then LDL^T)
+  int factorisations = 0;         ///< numeric factorisations of the tangent
+  int shifted_factorisations = 0; ///< of them, with a diagonal shift (tangent not positive definite)
+  int linear_iterations = 0;      ///< preconditioned CG iterations on kept factorisations
   double assembly_seconds = 0.0;  ///< wall time in element evaluation and assembly
   double linear_solve_seconds = 0.0;  ///< wall time in factorisation and solves
   double seconds = 0.0;           ///< wall time of the solve
