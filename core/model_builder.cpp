@@ -311,7 +311,7 @@ Model build_model(const TetMesh& mesh, const ModelSettings& settings,
   m.gravity.name = settings.gravity_direction;
   m.units = settings.units;
   m.analysis = settings.analysis;
-  if (settings.element == ElementOrder::Quadratic) {
+  if (settings.element.value_or(default_element(m.materials)) == ElementOrder::Quadratic) {
     make_quadratic(m);
     for (std::size_t i = 0; i < m.node_sets.size(); ++i) {
       const bool interface = settings.node_sets[i].selection.kind == SetSelection::Kind::Between;

@@ -155,8 +155,15 @@ std::string SetSelection::describe() const {
   return s.str();
 }
 
+ElementOrder default_element(const std::vector<MaterialSpec>& materials) {
+  for (const MaterialSpec& m : materials)
+    if (m.poisson_ratio() >= 0.49) return ElementOrder::Quadratic;
+  return ElementOrder::Linear;
+}
+
 ModelSettings ModelSettings::phantom_default() {
   ModelSettings s;
+  s.element = ElementOrder::Linear;
   NodeSetSettings wall;
   wall.name = "chest_wall";
   wall.selection.side_a.tissues = {"muscle"};
@@ -173,13 +180,13 @@ ModelSettings ModelSettings::phantom_default() {
 ModelSettings ModelSettings::from_yaml(YamlMap& map) {
   ModelSettings s;
   s.units = parse_unit_system(map.text("units", unit_system_name(s.units)));
-  const std::string element = map.text("element", "tet4");
+  const std::string element = map.text("element", "auto");
   if (element == "tet4")
     s.element = ElementOrder::Linear;
   else if (element == "tet10")
     s.element = ElementOrder::Quadratic;
-  else
-    throw InputError(map.where("element") + ": unknown element '" + element + "' (tet4 or tet10)");
+  else if (element != "auto")
+    throw InputError(map.where("element") + ": unknown element '" + element + "' (tet4, tet10 or auto)");
   const std::string node_order = map.text("node_order", "rcm");
   if (node_order == "rcm")
     s.node_order = NodeOrder::ReverseCuthillMcKee;
@@ -267,7 +274,8 @@ ModelSettings ModelSettings::from_yaml(YamlMap& map) {
 void ModelSettings::to_yaml(YAML::Emitter& out) const {
   out << YAML::BeginMap;
   out << YAML::Key << "units" << YAML::Value << unit_system_name(units);
-  out << YAML::Key << "element" << YAML::Value << (element == ElementOrder::Linear ? "tet4" : "tet10");
+  out << YAML::Key << "element" << YAML::Value
+      << (!element ? "auto" : *element == ElementOrder::Linear ? "tet4" : "tet10");
   out << YAML::Key << "node_order" << YAML::Value << (node_order == NodeOrder::Mesh ? "mesh" : "rcm");
   out << YAML::Key << "node_sets" << YAML::Value << YAML::BeginSeq;
   for (const NodeSetSettings& n : node_sets) {

@@ -255,9 +255,35 @@ analysis: {load_steps: 4, max_load_steps: 40}
   EXPECT_EQ(again.face_sets[0].selection.side_a.tissues.size(), 2u);
 }
 
+// `element: auto` (the default when the key is omitted): tet10 as soon as one tissue is nearly
+// incompressible (nu >= 0.49, where tet4 locks), tet4 otherwise; the choice is made per model
+// from the materials of the mesh's tissues.
+TEST(ModelBuilder, AutoElementIsTet10ForNearlyIncompressibleTissue) {
+  const ModelSettings s = settings_from("gravity: {direction: prone, acceleration: 9.81 m/s^2}\n");
+  EXPECT_FALSE(s.element.has_value());
+  YAML::Emitter out;
+  s.to_yaml(out);
+  EXPECT_NE(std::string(out.c_str()).find("element: auto"), std::string::npos) << out.c_str();
+
+  ModelSettings settings = test::block_settings({});
+  settings.element.reset();
+  std::map<std::string, MaterialSpec> materials = test::block_materials(false);
+  // The fixture's tissues have K/mu >= 111 (nu >= 0.4955): auto gives tet10.
+  EXPECT_EQ(build_model(test::block_mesh(), settings, materials, "test").order, ElementOrder::Quadratic);
+  // Compressible enough everywhere (K = 3 mu: nu = 0.3535 < 0.49): tet4.
+  for (auto& [name, m] : materials) m.K_Pa = 3.0 * m.mu_Pa;
+  EXPECT_LT(materials.at("fat").poisson_ratio(), 0.49);
+  EXPECT_EQ(build_model(test::block_mesh(), settings, materials, "test").order, ElementOrder::Linear);
+  // One nearly incompressible tissue is enough.
+  materials.at("tumor").K_Pa = 100.0 * materials.at("tumor").mu_Pa;
+  EXPECT_GE(materials.at("tumor").poisson_ratio(), 0.49);
+  EXPECT_EQ(build_model(test::block_mesh(), settings, materials, "test").order, ElementOrder::Quadratic);
+}
+
 TEST(ModelBuilder, SettingsErrorsNameTheKey) {
   auto error = [](const std::string& yaml) { return test::input_error_of([&] { settings_from(yaml); }); };
-  EXPECT_NE(error("element: hex8").find("t.yaml: model.element: unknown element 'hex8'"), std::string::npos);
+  EXPECT_NE(error("element: hex8").find("t.yaml: model.element: unknown element 'hex8' (tet4, tet10 or auto)"),
+            std::string::npos);
   EXPECT_NE(error("unit: SI").find("model.unit"), std::string::npos);
   EXPECT_NE(error("units: cgs").find("cgs"), std::string::npos);
   EXPECT_NE(error("node_order: metis").find("t.yaml: model.node_order: unknown node order 'metis'"), std::string::npos);
