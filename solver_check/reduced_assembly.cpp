@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -36,6 +37,14 @@ LocalDofs local_dofs(const std::array<int, 10>& element, int n, const DofMap& do
 /// small enough that the chunk's buffer (up to 465 doubles per tet10) stays a few tens of MB.
 constexpr int kChunk = 8192;
 
+/// $OMP_NUM_THREADS when set, else every processor. Not omp_get_max_threads(): other libraries
+/// in the process change it (initialising the Gmsh SDK, which the .msh writer does, sets it to 1).
+int default_threads() {
+  if (const char* env = std::getenv("OMP_NUM_THREADS"))
+    if (const int n = std::atoi(env); n > 0) return n;
+  return omp_get_num_procs();
+}
+
 }  // namespace
 
 ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::array<int, 10>>& elements,
@@ -46,7 +55,7 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
       geometry_(geometry),
       law_(law),
       dofs_(dofs),
-      threads_(threads > 0 ? threads : omp_get_max_threads()) {
+      threads_(threads > 0 ? threads : default_threads()) {
   const int num_nodes = dofs.num_nodes();
   const int ne = static_cast<int>(elements.size());
 

@@ -30,7 +30,7 @@ namespace tissuemesh {
 class ReducedAssembly {
  public:
   /// `geometry` and `law` per element (same length as `elements`); everything is referenced, not
-  /// copied, and must outlive this object. threads <= 0: OpenMP's default.
+  /// copied, and must outlive this object. threads <= 0: $OMP_NUM_THREADS, else all processors.
   ReducedAssembly(ElementOrder order, const std::vector<std::array<int, 10>>& elements,
                   const std::vector<ElementGeometry>& geometry, const std::vector<const HyperelasticLaw*>& law,
                   const DofMap& dofs, int threads);

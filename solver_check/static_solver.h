@@ -96,7 +96,8 @@ struct SolveOptions {
   /// Imposed displacements (ramped with the load). Empty for the usual gravity solve.
   std::vector<PrescribedDisplacement> prescribed;
   LinearSolverKind linear_solver = LinearSolverKind::Auto;
-  /// Threads for assembly (and CHOLMOD's BLAS is left as configured); 0 = OpenMP's default.
+  /// Threads for assembly (CHOLMOD's BLAS is left as configured); 0 = $OMP_NUM_THREADS, else all
+  /// processors.
   int threads = 0;
   /// Called after every attempted increment, e.g. to print progress; may be empty.
   std::function<void(const StepRecord&)> on_step;
