@@ -11,13 +11,13 @@ namespace {
 // coordinates pass through the mm systems unchanged.
 struct Scales {
   const char* name;
-  double pa_per_stress, kg_m3_per_density, acceleration_per_m_s2, mm_per_length;
-  const char *stress_unit, *density_unit, *acceleration_unit, *length_unit;
+  double pa_per_stress, kg_m3_per_density, acceleration_per_m_s2, mm_per_length, force_per_newton;
+  const char *stress_unit, *density_unit, *acceleration_unit, *length_unit, *force_unit;
 };
 const Scales& scales(UnitSystem s) {
-  static const Scales si{"SI", 1.0, 1.0, 1.0, 1e3, "Pa", "kg/m^3", "m/s^2", "m"};
-  static const Scales mm_t_s{"mm-t-s", 1e6, 1e12, 1e3, 1.0, "MPa", "t/mm^3", "mm/s^2", "mm"};
-  static const Scales mm_kg_s{"mm-kg-s", 1e3, 1e9, 1e3, 1.0, "kPa", "kg/mm^3", "mm/s^2", "mm"};
+  static const Scales si{"SI", 1.0, 1.0, 1.0, 1e3, 1.0, "Pa", "kg/m^3", "m/s^2", "m", "N"};
+  static const Scales mm_t_s{"mm-t-s", 1e6, 1e12, 1e3, 1.0, 1.0, "MPa", "t/mm^3", "mm/s^2", "mm", "N"};
+  static const Scales mm_kg_s{"mm-kg-s", 1e3, 1e9, 1e3, 1.0, 1e3, "kPa", "kg/mm^3", "mm/s^2", "mm", "mN"};
   switch (s) {
     case UnitSystem::SI:
       return si;
@@ -42,10 +42,12 @@ std::string stress_unit(UnitSystem s) { return scales(s).stress_unit; }
 std::string density_unit(UnitSystem s) { return scales(s).density_unit; }
 std::string acceleration_unit(UnitSystem s) { return scales(s).acceleration_unit; }
 std::string length_unit(UnitSystem s) { return scales(s).length_unit; }
+std::string force_unit(UnitSystem s) { return scales(s).force_unit; }
 
 double stress_from_pascal(UnitSystem s, double pascal) { return pascal / scales(s).pa_per_stress; }
 double density_from_kg_per_m3(UnitSystem s, double rho) { return rho / scales(s).kg_m3_per_density; }
 double acceleration_from_m_per_s2(UnitSystem s, double a) { return a * scales(s).acceleration_per_m_s2; }
 double length_from_mm(UnitSystem s, double mm) { return mm / scales(s).mm_per_length; }
+double force_from_newton(UnitSystem s, double newton) { return newton * scales(s).force_per_newton; }
 
 }  // namespace tissuemesh

@@ -25,11 +25,15 @@ std::string stress_unit(UnitSystem system);
 std::string density_unit(UnitSystem system);
 std::string acceleration_unit(UnitSystem system);
 std::string length_unit(UnitSystem system);
+/// Force unit = stress x length^2: "N" (SI, mm-t-s) or "mN" (mm-kg-s).
+std::string force_unit(UnitSystem system);
 
 /// Conversions of SI input values (and of millimetre geometry) into the system's units.
 double stress_from_pascal(UnitSystem system, double pascal);
 double density_from_kg_per_m3(UnitSystem system, double kg_per_m3);
 double acceleration_from_m_per_s2(UnitSystem system, double m_per_s2);
 double length_from_mm(UnitSystem system, double mm);
+/// Newtons into the system's force unit (x 1, or x 1000 for mN); divide by it to get newtons.
+double force_from_newton(UnitSystem system, double newton);
 
 }  // namespace tissuemesh

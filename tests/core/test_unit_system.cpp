@@ -39,3 +39,15 @@ TEST(UnitSystem, NamesRoundTripAndUnknownNamesAreRefused) {
   EXPECT_NE(msg.find("'cgs'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("mm-kg-s"), std::string::npos) << msg;
 }
+
+TEST(UnitSystem, ForceUnitIsStressTimesLengthSquared) {
+  // One newton is 1 Pa on 1 m^2: converted stress times the squared length of one metre.
+  for (UnitSystem s : kAll) {
+    const double metre = length_from_mm(s, 1000.0);
+    expect_rel(force_from_newton(s, 1.0), stress_from_pascal(s, 1.0) * metre * metre);
+  }
+  EXPECT_EQ(force_unit(UnitSystem::SI), "N");
+  EXPECT_EQ(force_unit(UnitSystem::MillimetreTonneSecond), "N");
+  EXPECT_EQ(force_unit(UnitSystem::MillimetreKilogramSecond), "mN");
+  EXPECT_EQ(force_from_newton(UnitSystem::MillimetreKilogramSecond, 6.5), 6500.0);
+}
