@@ -5,6 +5,7 @@
 #include "mesher/direct_mesher.h"
 
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 
 namespace tissuemesh::app {
@@ -20,6 +21,10 @@ int run_guarded(const std::string& command, const std::function<void()>& body) {
   } catch (const OutputError& e) {
     std::cerr << prefix << e.what() << "\n";
     return 2;
+  } catch (const SolverError& e) {
+    // A solve that failed on valid input (e.g. did not converge): the message says it all.
+    std::cerr << prefix << e.what() << "\n";
+    return 1;
   } catch (const std::bad_alloc&) {
     std::cerr << prefix << "out of memory\n";
     return 1;
@@ -64,6 +69,27 @@ nlohmann::json run_record_common(const Progress& progress, const std::string& cm
   j["total_seconds"] = total;
   j["peak_memory_mib"] = peak_memory_mib();
   return j;
+}
+
+void write_text_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream f(path);
+  f << text;
+  if (!f.flush()) throw OutputError(path.string() + ": cannot write");
+}
+
+bool print_config_or_require_out(bool print_config, const std::string& effective_yaml, const std::string& out) {
+  if (print_config) {
+    std::cout << effective_yaml;
+    return false;
+  }
+  if (out.empty()) throw InputError("--out DIR is required");
+  return true;
+}
+
+std::string format_double(const char* printf_format, double value) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, printf_format, value);
+  return buf;
 }
 
 std::string command_line(int argc, char** argv) {

@@ -1,13 +1,15 @@
 // What every subcommand shares: exception -> exit code mapping, progress printing, the run record.
 //
 // Exit codes (the contract of DESIGN.md): 0 success, 2 bad input (InputError, OutputError, a
-// missing file, a bad option), 1 internal failure (anything else).
+// missing file, a bad option), 1 failure on valid input (SolverError, printed as it is: e.g. a
+// solve that did not converge) and internal failure (anything else, printed as "internal failure").
 #pragma once
 
 #include "core/progress.h"
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <functional>
 #include <string>
 
@@ -23,6 +25,17 @@ Progress console_progress();
 /// The part of every run record that does not depend on the command: versions, peak memory,
 /// stage timings, command line.
 nlohmann::json run_record_common(const Progress& progress, const std::string& command_line);
+
+/// Writes `text` to `path` (a staged output); OutputError naming the path when it cannot.
+void write_text_file(const std::filesystem::path& path, const std::string& text);
+
+/// The preamble of the commands that take -c CONFIG, -o DIR and --print-config: when
+/// `print_config`, prints `effective_yaml` and returns false (the command is done); otherwise throws
+/// InputError when `out` is empty and returns true.
+bool print_config_or_require_out(bool print_config, const std::string& effective_yaml, const std::string& out);
+
+/// `value` printed with a printf format for one double, e.g. format_double("%.2f", 1.234) = "1.23".
+std::string format_double(const char* printf_format, double value);
 
 /// The command line as typed (for run records).
 std::string command_line(int argc, char** argv);

@@ -5,10 +5,8 @@
 #include "app/job_config.h"
 #include "core/errors.h"
 #include "core/output_dir.h"
-#include "core/vtu_io.h"
 #include "fe_export/registry.h"
 
-#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -42,23 +40,13 @@ void add_export_command(CLI::App& cli, Invocation& run) {
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("export", [&] {
       const JobConfig config = JobConfig::load(opt->config);
-      if (opt->print_config) {
-        std::cout << config.to_yaml();
-        return;
-      }
-      if (opt->out.empty()) throw InputError("--out DIR is required");
+      if (!print_config_or_require_out(opt->print_config, config.to_yaml(), opt->out)) return;
       const std::vector<std::string> formats = opt->formats.empty() ? config.exports.formats : opt->formats;
       for (const std::string& f : formats) export_format_named(f);  // unknown names fail before any work
       OutputDir out(opt->out);
       Progress progress = console_progress();
-      TetMesh mesh;
-      {
-        auto stage = progress.stage("read " + opt->mesh);
-        mesh = read_vtu(opt->mesh);
-      }
-      const nlohmann::json inputs = {{"mesh", std::filesystem::absolute(opt->mesh).string()},
-                                     {"config", std::filesystem::absolute(opt->config).string()}};
-      export_into(mesh, config, formats, inputs, run.command_line, progress, out);
+      const JobModel job = read_job_model(opt->mesh, config, progress);
+      export_into(job.model, config, formats, job.inputs, run.command_line, progress, out);
       out.commit();
       std::cout << "wrote " << out.target().string() << "/export.json and the model files listed in it\n";
     });

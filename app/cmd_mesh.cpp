@@ -31,11 +31,7 @@ void add_mesh_command(CLI::App& cli, Invocation& run) {
     run.exit_code = run_guarded("mesh", [&] {
       const JobConfig job = JobConfig::load(opt->config);
       const MeshConfig& config = job.require_mesh();
-      if (opt->print_config) {
-        std::cout << job.to_yaml();
-        return;
-      }
-      if (opt->out.empty()) throw InputError("--out DIR is required");
+      if (!print_config_or_require_out(opt->print_config, job.to_yaml(), opt->out)) return;
       OutputDir out(opt->out);  // fails early on an unwritable folder, before any work
       Progress progress = console_progress();
       LabelImage labels;

@@ -3,8 +3,10 @@
 #include "app/cli_support.h"
 #include "core/errors.h"
 #include "core/model_builder.h"
+#include "core/vtu_io.h"
 #include "fe_export/registry.h"
 
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -94,20 +96,34 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 
 }  // namespace
 
-nlohmann::json export_into(const TetMesh& mesh, const JobConfig& config, const std::vector<std::string>& formats,
-                           const nlohmann::json& inputs, const std::string& command_line, Progress& progress,
-                           OutputDir& out) {
+Model build_job_model(const TetMesh& mesh, const JobConfig& config, Progress& progress) {
   if (!config.has_materials)
     throw InputError(config.source + ": has no `materials:` section (every tissue needs a law, its parameters "
                                      "and a density; e.g. `materials: {preset: materials/ucl-niftysim-invivo.yaml}`)");
+  auto stage = progress.stage("build model");
+  Model model = build_model(mesh, config.model, config.materials.tissues, config.materials.source);
+  model.title = "tissuemesh model";
+  return model;
+}
+
+JobModel read_job_model(const std::string& mesh_path, const JobConfig& config, Progress& progress) {
+  TetMesh mesh;
+  {
+    auto stage = progress.stage("read " + mesh_path);
+    mesh = read_vtu(mesh_path);
+  }
+  JobModel job;
+  job.inputs = {{"mesh", std::filesystem::absolute(mesh_path).string()},
+                {"config", std::filesystem::absolute(config.source).string()}};
+  job.model = build_job_model(mesh, config, progress);
+  return job;
+}
+
+nlohmann::json export_into(const Model& model, const JobConfig& config, const std::vector<std::string>& formats,
+                           const nlohmann::json& inputs, const std::string& command_line, Progress& progress,
+                           OutputDir& out) {
   std::vector<const ExportFormat*> chosen;
   for (const std::string& name : formats) chosen.push_back(&export_format_named(name));
-  Model model;
-  {
-    auto stage = progress.stage("build model");
-    model = build_model(mesh, config.model, config.materials.tissues, config.materials.source);
-    model.title = "tissuemesh model";
-  }
   const nlohmann::json summary = model_summary_json(model);
   nlohmann::json files = nlohmann::json::array();
   nlohmann::json notes = nlohmann::json::array();

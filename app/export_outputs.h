@@ -14,13 +14,28 @@
 
 namespace tissuemesh::app {
 
-/// Builds the model of `mesh` with `config` (materials, model settings), writes every format of
-/// `formats` under its default name (model.feb, model.inp, model.scn + model.vtk, model.vtu,
-/// model.msh) into `out`'s staging folder, and stages export.json (the run record: inputs,
-/// effective config, versions, timings, model counts, total weight, files, notes) and prints a
-/// summary. Throws InputError before writing anything when the model or a format refuses it.
-/// Does not commit `out`. Returns the record.
-nlohmann::json export_into(const TetMesh& mesh, const JobConfig& config, const std::vector<std::string>& formats,
+/// The model of `mesh` with `config` (materials, model settings) as a "build model" stage: what
+/// `export`, `solve`, `check` and `demo` all start from. Throws InputError when the config has no
+/// `materials:` or the model refuses the mesh (build_model's errors).
+Model build_job_model(const TetMesh& mesh, const JobConfig& config, Progress& progress);
+
+/// The model of a mesh file, with what a run record says about its inputs.
+struct JobModel {
+  Model model;
+  nlohmann::json inputs;  ///< {"mesh": ..., "config": ...}, absolute paths
+};
+
+/// Where `export`, `solve` and `check` start: reads `mesh_path` (a .vtu of `tissuemesh mesh`) in a
+/// "read MESH" stage, then build_job_model. Throws InputError for an unreadable mesh and what
+/// build_job_model throws.
+JobModel read_job_model(const std::string& mesh_path, const JobConfig& config, Progress& progress);
+
+/// Writes every format of `formats` under its default name (model.feb, model.inp, model.scn +
+/// model.vtk, model.vtu, model.msh) into `out`'s staging folder, and stages export.json (the run
+/// record: inputs, effective config, versions, timings, model counts, total weight, files, notes)
+/// and prints a summary. Throws InputError before writing anything when a format refuses the
+/// model. Does not commit `out`. Returns the record.
+nlohmann::json export_into(const Model& model, const JobConfig& config, const std::vector<std::string>& formats,
                            const nlohmann::json& inputs, const std::string& command_line, Progress& progress,
                            OutputDir& out);
 

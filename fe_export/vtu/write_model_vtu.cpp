@@ -21,7 +21,10 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include <cmath>
 #include <functional>
+#include <stdexcept>
+#include <string>
 
 namespace tissuemesh {
 
@@ -38,9 +41,42 @@ vtkNew<vtkDoubleArray> tissue_cell_array(const Model& model, const char* name,
   return a;
 }
 
+// Refuses an empty name or one `data` already has (for field data also the names write_grid_vtu
+// adds), so that an extra array never silently replaces one of the model's.
+void check_new_name(const std::string& name, vtkFieldData& data, bool field, const std::string& what) {
+  if (name.empty()) throw std::invalid_argument(what + ": empty name");
+  if (data.GetAbstractArray(name.c_str()) != nullptr ||
+      (field && (name == "tissue_names" || name == "coordinate_system" || name == "length_unit")))
+    throw std::invalid_argument(what + ": the file already has an array of that name");
+}
+
+// `a` as a VTK array of `tuples` tuples (any count when tuples < 0) for `data`, refusing a wrong
+// length, a non-finite value or a name already taken.
+vtkNew<vtkDoubleArray> extra_array(const VtuArray& a, vtkIdType tuples, vtkFieldData& data, const char* kind) {
+  const std::string what = std::string("write_model_vtu: ") + kind + " array '" + a.name + "'";
+  check_new_name(a.name, data, std::string(kind) == "field", what);
+  if (a.components < 1 || a.values.size() % static_cast<std::size_t>(a.components) != 0 ||
+      (!a.component_names.empty() && a.component_names.size() != static_cast<std::size_t>(a.components)))
+    throw std::invalid_argument(what + ": inconsistent components");
+  const auto n = static_cast<vtkIdType>(a.values.size() / static_cast<std::size_t>(a.components));
+  if (tuples >= 0 && n != tuples)
+    throw std::invalid_argument(what + ": " + std::to_string(n) + " tuples, expected " + std::to_string(tuples));
+  vtkNew<vtkDoubleArray> out;
+  out->SetName(a.name.c_str());
+  out->SetNumberOfComponents(a.components);
+  for (std::size_t c = 0; c < a.component_names.size(); ++c)
+    out->SetComponentName(static_cast<vtkIdType>(c), a.component_names[c].c_str());
+  out->SetNumberOfTuples(n);
+  for (std::size_t i = 0; i < a.values.size(); ++i) {
+    if (!std::isfinite(a.values[i])) throw std::invalid_argument(what + ": non-finite value at " + std::to_string(i));
+    out->SetValue(static_cast<vtkIdType>(i), a.values[i]);
+  }
+  return out;
+}
+
 }  // namespace
 
-void write_model_vtu(const Model& model, const std::string& path) {
+void write_model_vtu(const Model& model, const std::string& path, const ModelVtuData& extra) {
   validate_model(model);  // every writer refuses an invalid model first, also when called directly
   const std::size_t n_nodes = model.nodes.size();
   const std::size_t n_el = model.elements.size();
@@ -88,6 +124,17 @@ void write_model_vtu(const Model& model, const std::string& path) {
   std::vector<std::string> laws;
   for (const MaterialSpec& m : model.materials) laws.push_back(material_law_name(m.law));
   add_string_field(*grid, "material_laws", laws);
+
+  for (const VtuArray& a : extra.point_data)
+    grid->GetPointData()->AddArray(extra_array(a, static_cast<vtkIdType>(n_nodes), *grid->GetPointData(), "point"));
+  for (const VtuArray& a : extra.cell_data)
+    grid->GetCellData()->AddArray(extra_array(a, static_cast<vtkIdType>(n_el), *grid->GetCellData(), "cell"));
+  for (const VtuArray& a : extra.field_data)
+    grid->GetFieldData()->AddArray(extra_array(a, -1, *grid->GetFieldData(), "field"));
+  for (const auto& [name, values] : extra.string_fields) {
+    check_new_name(name, *grid->GetFieldData(), true, "write_model_vtu: string field '" + name + "'");
+    add_string_field(*grid, name.c_str(), values);
+  }
   write_grid_vtu(*grid, model.tissue_names, path);
 }
 

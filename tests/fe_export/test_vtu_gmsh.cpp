@@ -20,8 +20,11 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <map>
 #include <set>
+#include <stdexcept>
 
 namespace tissuemesh {
 namespace {
@@ -107,6 +110,58 @@ TEST(ModelVtu, UnwritablePathIsAnOutputErrorNamingIt) {
   } catch (const OutputError& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
   }
+}
+
+TEST(ModelVtu, ExtraArraysRoundTripAndBadOnesAreRefusedBeforeWriting) {
+  const Model m = block_model();
+  const auto dir = test::scratch_dir();
+  ModelVtuData extra;
+  VtuArray u{"displacement", 3, {"x", "y", "z"}, {}};
+  for (std::size_t i = 0; i < m.nodes.size(); ++i) u.values.insert(u.values.end(), {0.5 * i, -1.0 * i, 2.0});
+  extra.point_data.push_back(u);
+  std::vector<double> per_cell(m.elements.size());
+  for (std::size_t e = 0; e < per_cell.size(); ++e) per_cell[e] = 1.0 + 1e-3 * static_cast<double>(e);
+  extra.cell_data.push_back({"J", 1, {}, per_cell});
+  extra.field_data.push_back({"load_fraction", 1, {}, {0.75}});
+  extra.string_fields.push_back({"stress_unit", {"Pa"}});
+  const auto path = (dir / "extra.vtu").string();
+  write_model_vtu(m, path, extra);
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkUnstructuredGrid* grid = reader->GetOutput();
+  vtkDataArray* d = grid->GetPointData()->GetArray("displacement");
+  ASSERT_NE(d, nullptr);
+  ASSERT_EQ(d->GetNumberOfComponents(), 3);
+  EXPECT_STREQ(d->GetComponentName(2), "z");
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(d->GetComponent(i, c), u.values[3 * i + c]);
+  vtkDataArray* J = grid->GetCellData()->GetArray("J");
+  ASSERT_NE(J, nullptr);
+  for (vtkIdType e = 0; e < grid->GetNumberOfCells(); ++e) ASSERT_EQ(J->GetTuple1(e), per_cell[e]);
+  EXPECT_NE(grid->GetCellData()->GetArray("tissue_id"), nullptr) << "the model's own arrays stay";
+  EXPECT_EQ(grid->GetFieldData()->GetArray("load_fraction")->GetTuple1(0), 0.75);
+  EXPECT_EQ(strings(grid, "stress_unit"), std::vector<std::string>{"Pa"});
+
+  // Programmer errors, refused before the file exists: wrong length, NaN, a name the model has.
+  const auto refused = [&](const ModelVtuData& bad, const char* what) {
+    const auto p = dir / "bad.vtu";
+    EXPECT_THROW(write_model_vtu(m, p.string(), bad), std::invalid_argument) << what;
+    EXPECT_FALSE(std::filesystem::exists(p)) << what;
+  };
+  ModelVtuData bad;
+  bad.point_data.push_back({"u", 3, {}, std::vector<double>(3 * m.nodes.size() - 3)});
+  refused(bad, "short");
+  bad = {};
+  bad.cell_data.push_back({"J", 1, {}, per_cell});
+  bad.cell_data[0].values[7] = std::nan("");
+  refused(bad, "NaN");
+  bad = {};
+  bad.cell_data.push_back({"tissue_id", 1, {}, per_cell});
+  refused(bad, "tissue_id taken");
+  bad = {};
+  bad.string_fields.push_back({"length_unit", {"m"}});
+  refused(bad, "length_unit taken");
 }
 
 // gmsh::initialize / finalize for the reading side.
