@@ -1,16 +1,21 @@
-// tissuemesh demo [--out DIR]: phantom -> labels on disk -> mesh -> report -> model exports, the main
-// job end to end.
+// tissuemesh demo [--out DIR]: phantom -> labels on disk -> mesh -> report -> model exports ->
+// built-in solve -> CalculiX cross-check, the main job end to end.
+#include "app/check_outputs.h"
 #include "app/cli_support.h"
 #include "app/commands.h"
 #include "app/export_outputs.h"
 #include "app/job_config.h"
 #include "app/mesh_outputs.h"
+#include "app/solve_outputs.h"
+#include "core/errors.h"
 #include "core/output_dir.h"
 #include "mesher/image_io.h"
 #include "mesher/phantom.h"
 
+#include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace tissuemesh::app {
 
@@ -19,17 +24,60 @@ struct DemoOptions {
   std::string out = "tissuemesh-demo";
   std::string config;
   bool print_config = false;
+  bool skip_calculix = false;
 };
+
+/// The figures of the run, last on the console: what the solve found (its record, solve.json) and
+/// how it compares with CalculiX.
+void print_figures(const nlohmann::json& solve_record, const CalculixCheck* check) {
+  const nlohmann::json& res = solve_record["results"];
+  char line[256];
+  const bool converged = solve_record["solver"]["converged"].get<bool>();
+  std::cout << "\nresults (built-in solver" << (converged ? "" : ", NOT converged") << "):\n";
+  std::snprintf(line, sizeof line, "  %-30s %.3f mm (node %d)\n", "max displacement",
+                res["max_displacement_mm"].get<double>(), res["max_displacement_node"].get<int>());
+  std::cout << line;
+  for (const auto& t : res["tissues"])
+    if (t["name"] == "tumor") {
+      const auto& u = t["centroid_displacement_mm"];
+      std::snprintf(line, sizeof line, "  %-30s %.3f mm = (%.3f, %.3f, %.3f) mm LPS\n", "tumour centroid displacement",
+                    t["centroid_displacement_magnitude_mm"].get<double>(), u[0].get<double>(), u[1].get<double>(),
+                    u[2].get<double>());
+      std::cout << line;
+    }
+  const auto norm = [](const nlohmann::json& v) {
+    return Eigen::Vector3d(v[0].get<double>(), v[1].get<double>(), v[2].get<double>()).norm();
+  };
+  std::snprintf(line, sizeof line, "  %-30s %.5f N vs %.5f N (relative imbalance %.1e)\n", "reaction vs weight",
+                norm(res["total_reaction_N"]), norm(res["total_weight_N"]),
+                res["reaction_vs_weight_rel"].is_null() ? 0.0 : res["reaction_vs_weight_rel"].get<double>());
+  std::cout << line;
+  const double builtin_s = solve_record["solver"]["seconds"].get<double>();
+  if (check) {
+    std::snprintf(line, sizeof line, "  %-30s max %.3g %%, mean %.3g %% of the max displacement\n",
+                  "difference vs CalculiX", 100.0 * check->comparison.max_diff_rel,
+                  100.0 * check->comparison.mean_diff_rel);
+    std::cout << line;
+    std::snprintf(line, sizeof line, "  %-30s built-in %.1f s, CalculiX %.1f s\n", "solve time", builtin_s,
+                  check->calculix_seconds);
+  } else {
+    std::snprintf(line, sizeof line, "  %-30s built-in %.1f s (no CalculiX cross-check)\n", "solve time", builtin_s);
+  }
+  std::cout << line;
+}
 }  // namespace
 
 void add_demo_command(CLI::App& cli, Invocation& run) {
   auto opt = std::make_shared<DemoOptions>();
   CLI::App* sub = cli.add_subcommand(
-      "demo", "Built-in phantom -> mesh -> model exports: DIR/phantom.nii.gz, DIR/mesh.vtu, DIR/report.json, "
-              "DIR/report.txt, DIR/model.{feb,inp,scn,vtk,vtu,msh}, DIR/export.json");
+      "demo", "Built-in phantom -> mesh -> model exports -> built-in solve -> CalculiX cross-check: "
+              "DIR/phantom.nii.gz, DIR/mesh.vtu, DIR/report.json, DIR/report.txt, DIR/model.{feb,inp,scn,vtk,vtu,msh}, "
+              "DIR/export.json, DIR/solution.vtu, DIR/solve.json, DIR/check.json, DIR/calculix/");
   sub->add_option("-o,--out", opt->out, "output directory")->capture_default_str();
   sub->add_option("-c,--config", opt->config, "config (default: the built-in phantom config = configs/phantom.yaml)");
   sub->add_flag("--print-config", opt->print_config, "print the effective config and exit");
+  sub->add_flag("--skip-calculix", opt->skip_calculix,
+                "do not run the CalculiX cross-check (no check.json, no calculix/); the built-in solve still runs");
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("demo", [&] {
       const JobConfig job = opt->config.empty() ? JobConfig::phantom_default() : JobConfig::load(opt->config);
@@ -39,6 +87,7 @@ void add_demo_command(CLI::App& cli, Invocation& run) {
       }
       const MeshConfig& config = job.require_mesh();
       job.check_materials_cover_tissues();  // before minutes of meshing, not after
+      if (!opt->skip_calculix) require_calculix("run the demo with --skip-calculix");
       OutputDir out(opt->out);
       Progress progress = console_progress();
       LabelImage generated;
@@ -60,12 +109,31 @@ void add_demo_command(CLI::App& cli, Invocation& run) {
                                      {"config", config.source}};
       const TetMesh mesh = mesh_into(labels, "phantom.nii.gz", config, inputs, run.command_line, progress, out);
       const nlohmann::json export_inputs = {{"mesh", out.final_path("mesh.vtu").string()}, {"config", job.source}};
-      export_into(mesh, job, job.exports.formats, export_inputs, run.command_line, progress, out);
+      const Model model = build_job_model(mesh, job, progress);
+      export_into(model, job, job.exports.formats, export_inputs, run.command_line, progress, out);
+      SolveResult solved;
+      const nlohmann::json solve_record =
+          solve_into(model, job, export_inputs, run.command_line, progress, out, &solved);
+      std::optional<CalculixCheck> check;
+      if (opt->skip_calculix)
+        std::cout << "\nCalculiX cross-check skipped (--skip-calculix)\n";
+      else if (!solved.converged)
+        std::cout << "\nCalculiX cross-check not run: the built-in solve did not converge\n";
+      else
+        check = calculix_check_into(model, job, export_inputs, run.command_line, progress, out, &solved);
       out.commit();
-      std::cout << "wrote " << out.target().string()
+      print_figures(solve_record, check ? &*check : nullptr);
+      std::cout << "\nwrote " << out.target().string()
                 << "/{phantom.nii.gz, mesh.vtu, report.json, report.txt, model.feb, model.inp, model.scn, "
-                   "model.vtk, model.vtu, model.msh, export.json}\n"
-                << "open mesh.vtu in ParaView and colour by tissue_id; run `ccx -i model` for CalculiX\n";
+                   "model.vtk, model.vtu, model.msh, export.json, solution.vtu, solve.json"
+                << (check ? ", check.json, calculix/" : "") << "}\n"
+                << "open solution.vtu in ParaView, colour by tissue_id and warp by displacement"
+                << (check ? "; calculix/ holds the deck CalculiX solved and its results\n" : "\n");
+      if (!solved.converged)
+        throw SolverError("the built-in solve did not converge: " + solved.message + " (outputs written)");
+      if (check && !check->builtin_converged)
+        throw SolverError("the built-in solve of the CalculiX check did not converge: " + check->builtin_message +
+                          " (outputs written)");
     });
   });
 }

@@ -17,5 +17,7 @@ void add_phantom_command(CLI::App& cli, Invocation& run);
 void add_mesh_command(CLI::App& cli, Invocation& run);
 void add_info_command(CLI::App& cli, Invocation& run);
 void add_export_command(CLI::App& cli, Invocation& run);
+void add_solve_command(CLI::App& cli, Invocation& run);
+void add_check_command(CLI::App& cli, Invocation& run);
 
 }  // namespace tissuemesh::app

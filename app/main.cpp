@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   add_phantom_command(cli, run);
   add_mesh_command(cli, run);
   add_export_command(cli, run);
+  add_solve_command(cli, run);
+  add_check_command(cli, run);
   add_info_command(cli, run);
   try {
     cli.parse(argc, argv);

@@ -34,17 +34,23 @@ OutputDir::~OutputDir() {
 
 fs::path OutputDir::stage(const std::string& name) {
   names_.push_back(name);
-  return staging_ / name;
+  const fs::path path = staging_ / name;
+  std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
+  if (ec) throw OutputError((target_ / name).parent_path().string() + ": cannot create output folder: " + ec.message());
+  return path;
 }
 
 void OutputDir::commit() {
   // All or nothing: files already in the target that would be replaced are set aside first, and
   // put back if any move fails.
   std::vector<std::string> placed, set_aside;
+  std::vector<fs::path> made;  // sub-folders of the target this commit created
   auto roll_back = [&] {
     std::error_code ec;
     for (const auto& name : placed) fs::remove(target_ / name, ec);
     for (const auto& name : set_aside) fs::rename(staging_ / (name + ".previous"), target_ / name, ec);
+    for (auto it = made.rbegin(); it != made.rend(); ++it) fs::remove(*it, ec);  // only if empty
   };
   for (const auto& name : names_) {
     if (!fs::exists(staging_ / name))
@@ -54,6 +60,17 @@ void OutputDir::commit() {
   }
   for (const auto& name : names_) {
     std::error_code ec;
+    // A name with folders ("calculix/model.inp"): create the missing ones, outermost first.
+    std::vector<fs::path> missing;
+    for (fs::path dir = (target_ / name).parent_path(); dir != target_ && !fs::exists(dir); dir = dir.parent_path())
+      missing.push_back(dir);
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+      if (!fs::create_directory(*it, ec) && ec) {
+        roll_back();
+        throw OutputError(it->string() + ": cannot create output folder: " + ec.message());
+      }
+      made.push_back(*it);
+    }
     if (fs::exists(target_ / name)) {
       fs::rename(target_ / name, staging_ / (name + ".previous"), ec);
       if (ec) {

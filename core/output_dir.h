@@ -20,7 +20,9 @@ class OutputDir {
   OutputDir& operator=(const OutputDir&) = delete;
   ~OutputDir();
 
-  /// Where to write `name` now (inside the staging folder).
+  /// Where to write `name` now (inside the staging folder). `name` may hold folders
+  /// ("calculix/model.inp"): they are created in the staging folder now and in the target at
+  /// commit (and removed again, when empty, if the commit fails). Stage each name once.
   std::filesystem::path stage(const std::string& name);
   /// Final location of `name` after commit.
   std::filesystem::path final_path(const std::string& name) const { return target_ / name; }

@@ -127,4 +127,22 @@ const DatBlock& last_block(const std::vector<DatBlock>& blocks, const std::strin
   return *best;
 }
 
+std::vector<Eigen::Vector3d> values_by_node(const DatBlock& block, std::size_t num_nodes) {
+  const std::string what = "CalculiX results: '" + block.quantity + "' for set " + block.set + ": ";
+  std::vector<Eigen::Vector3d> values(num_nodes, Eigen::Vector3d::Zero());
+  for (const auto& [id, v] : block.values) {
+    if (id < 1 || static_cast<std::size_t>(id) > num_nodes)
+      throw InputError(what + "node " + std::to_string(id) + " is not one of the model's " +
+                       std::to_string(num_nodes) + " nodes");
+    values[id - 1] = v;
+  }
+  if (block.values.size() != num_nodes) {
+    std::size_t missing = 1;
+    while (block.values.count(static_cast<int>(missing))) ++missing;
+    throw InputError(what + std::to_string(block.values.size()) + " of " + std::to_string(num_nodes) +
+                     " nodes printed (node " + std::to_string(missing) + " missing)");
+  }
+  return values;
+}
+
 }  // namespace tissuemesh

@@ -27,4 +27,9 @@ std::vector<DatBlock> read_calculix_dat(const std::string& path);
 const DatBlock& last_block(const std::vector<DatBlock>& blocks, const std::string& quantity,
                            const std::string& set);
 
+/// The block's values as one vector per node, index = CalculiX node id - 1 (tissuemesh writes
+/// node i as id i + 1). Throws InputError when the block does not hold exactly the ids
+/// 1..num_nodes (naming the first one missing or out of range).
+std::vector<Eigen::Vector3d> values_by_node(const DatBlock& block, std::size_t num_nodes);
+
 }  // namespace tissuemesh

@@ -1,10 +1,13 @@
 #include "cli/cli_runner.h"
 
+#include "support/test_paths.h"
+
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <regex>
 #include <vector>
 
 namespace tissuemesh::test {
@@ -30,6 +33,16 @@ std::vector<std::string> files_below(const std::filesystem::path& dir) {
     if (e.is_regular_file()) files.push_back(std::filesystem::relative(e.path(), dir).string());
   std::sort(files.begin(), files.end());
   return files;
+}
+
+std::string coarse_config(const std::filesystem::path& dir, const std::string& element) {
+  std::string text = read_file(config_path("phantom-coarse.yaml"));
+  text = std::regex_replace(text, std::regex("element: tet4"), "element: " + element);
+  text = std::regex_replace(text, std::regex("preset: materials/"),
+                            "preset: " + std::string(TISSUEMESH_CONFIG_DIR) + "/materials/");
+  const auto path = dir / ("coarse-" + element + ".yaml");
+  std::ofstream(path) << text;
+  return path.string();
 }
 
 }  // namespace tissuemesh::test

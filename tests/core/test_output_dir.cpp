@@ -22,6 +22,20 @@ TEST(OutputDir, CommitMovesFilesIntoPlace) {
   EXPECT_EQ(std::distance(fs::directory_iterator(target), fs::directory_iterator()), 1);  // no staging left
 }
 
+TEST(OutputDir, NamesWithFoldersAreStagedAndCommitted) {
+  const fs::path target = test::scratch_dir() / "out";
+  for (const char* text : {"first", "second"}) {  // the second run replaces files in an existing sub-folder
+    OutputDir out(target);
+    std::ofstream(out.stage("sub/deeper/a.txt")) << text;
+    std::ofstream(out.stage("sub/b.txt")) << text;
+    EXPECT_EQ(fs::exists(target / "sub"), std::string(text) == "second") << "only the commit creates it";
+    out.commit();
+  }
+  EXPECT_EQ(test::read_file(target / "sub/deeper/a.txt"), "second");
+  EXPECT_EQ(test::read_file(target / "sub/b.txt"), "second");
+  EXPECT_EQ(std::distance(fs::directory_iterator(target), fs::directory_iterator()), 1);  // only sub/
+}
+
 TEST(OutputDir, FailureLeavesNothingBehind) {
   const fs::path target = test::scratch_dir() / "out";
   try {

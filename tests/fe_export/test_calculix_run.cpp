@@ -205,6 +205,24 @@ TEST(CalculixDat, ReadsBlocksTotalsAndFortranExponents) {
   }
 }
 
+TEST(CalculixDat, ValuesByNodeNeedEveryNodeOnce) {
+  DatBlock b;
+  b.quantity = "displacements";
+  b.set = "NALL";
+  b.values = {{1, {1, 2, 3}}, {2, {4, 5, 6}}};
+  const std::vector<Eigen::Vector3d> v = values_by_node(b, 2);
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_EQ(v[0], Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(v[1], Eigen::Vector3d(4, 5, 6));
+  try {
+    values_by_node(b, 3);
+    FAIL() << "a missing node is refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("node 3 missing"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(values_by_node(b, 1), InputError) << "node 2 is not one of 1 nodes";
+}
+
 TEST_F(Calculix, ReportsABadDeckThroughExitCodeAndLog) {
   const std::filesystem::path inp = test::scratch_dir() / "bad.inp";
   std::ofstream(inp) << "*NODE\n1, 0, 0, 0\n*BOUNDARY\nNOSUCHSET, ENCASTRE\n";

@@ -1,0 +1,63 @@
+// tissuemesh check MESH -c CONFIG -o DIR --calculix: cross-checks of a model. --calculix solves it
+// with CalculiX and with the built-in solver and compares the displacements node by node
+// (DIR/check.json, DIR/calculix/). Issue #6 adds --tetgen (the same geometry meshed by TetGen).
+#include "app/check_outputs.h"
+#include "app/cli_support.h"
+#include "app/commands.h"
+#include "app/export_outputs.h"
+#include "app/job_config.h"
+#include "core/errors.h"
+#include "core/output_dir.h"
+
+#include <iostream>
+#include <memory>
+
+namespace tissuemesh::app {
+
+namespace {
+struct CheckCliOptions {
+  std::string mesh, config, out;
+  bool calculix = false;
+  bool print_config = false;
+};
+}  // namespace
+
+void add_check_command(CLI::App& cli, Invocation& run) {
+  auto opt = std::make_shared<CheckCliOptions>();
+  CLI::App* sub = cli.add_subcommand(
+      "check", "Cross-checks of the model of MESH + CONFIG: --calculix solves it with CalculiX (ccx) and with the "
+               "built-in solver and compares the displacements (DIR/check.json, DIR/calculix/)");
+  sub->add_option("MESH", opt->mesh, "tetrahedral mesh written by `tissuemesh mesh` (mesh.vtu)")->required();
+  sub->add_option("-c,--config", opt->config, "config with `materials:` and `model:` (e.g. configs/phantom.yaml)")
+      ->required();
+  sub->add_option("-o,--out", opt->out, "output directory");
+  sub->add_flag("--calculix", opt->calculix,
+                "CalculiX (ccx, 2 threads) against the built-in solver on the same deck: max and mean nodal "
+                "difference relative to the max displacement; compressible-neo-hookean tissues are checked as "
+                "the uncoupled neo-hookean (noted)");
+  sub->add_flag("--print-config", opt->print_config, "print the effective config (defaults filled in) and exit");
+  sub->callback([opt, &run] {
+    run.exit_code = run_guarded("check", [&] {
+      const JobConfig config = JobConfig::load(opt->config);
+      if (opt->print_config) {
+        std::cout << config.to_yaml();
+        return;
+      }
+      if (!opt->calculix) throw InputError("choose a cross-check: --calculix");
+      if (opt->out.empty()) throw InputError("--out DIR is required");
+      require_calculix();  // before reading and building
+      OutputDir out(opt->out);
+      Progress progress = console_progress();
+      const JobModel job = read_job_model(opt->mesh, config, progress);
+      const CalculixCheck check = calculix_check_into(job.model, config, job.inputs, run.command_line, progress, out);
+      out.commit();
+      std::cout << "wrote " << out.target().string() << "/check.json and " << out.target().string()
+                << "/calculix/ (the deck CalculiX solved and its results)\n";
+      if (!check.builtin_converged)
+        throw SolverError("the built-in solve did not converge: " + check.builtin_message +
+                          " (outputs written; the comparison is of its last accepted increment)");
+    });
+  });
+}
+
+}  // namespace tissuemesh::app

@@ -1,0 +1,141 @@
+// `tissuemesh check --calculix` through the program: on the block of tests/support/model_fixture.h
+// with one tissue of each kind of law (a compressible neo-Hookean to be replaced, a Mooney-Rivlin
+// and an Ogden kept), the built-in solver and CalculiX agree within 1% of the max displacement;
+// bad requests and a missing or failing ccx are refused with their exit codes and nothing written.
+#include "cli/cli_runner.h"
+#include "core/vtu_io.h"
+#include "solver_check/calculix_run.h"
+#include "support/model_fixture.h"
+#include "support/test_paths.h"
+#include "support/tolerances.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+using namespace tissuemesh;
+using test::files_below;
+using test::read_file;
+using test::run_cli;
+
+namespace {
+
+class Check : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = test::scratch_dir();
+    write_vtu(test::block_mesh(), (dir / "block.vtu").string());
+    std::ofstream(dir / "block.yaml") << R"(materials:
+  fat: {law: compressible-neo-hookean, mu: 150 Pa, K: 50 kPa, density: 950 kg/m^3}
+  fgt: {law: mooney-rivlin, C10: 100 Pa, C01: 50 Pa, K: 60 kPa, density: 1040 kg/m^3}
+  tumor: {law: ogden, terms: [{mu: 700 Pa, alpha: 2}, {mu: 200 Pa, alpha: -2}], K: 100 kPa, density: 1060 kg/m^3}
+model:
+  element: tet4  # the quick check (auto would give tet10: nu = 0.4985); tet10 is checked on the coarse demo
+  node_sets: [{name: chest_wall, plane: {point_mm: [0, 10, 0], normal: [0, 1, 0], tolerance_mm: 0.01}}]
+)";
+  }
+
+  /// Runs `args` with TISSUEMESH_CCX set to `ccx` (restored afterwards).
+  test::CliResult run_with_ccx(const std::string& ccx, const std::string& args) {
+    const char* old = std::getenv("TISSUEMESH_CCX");
+    const std::string saved = old ? old : "";
+    ::setenv("TISSUEMESH_CCX", ccx.c_str(), 1);
+    const auto r = run_cli(args, dir);
+    if (old)
+      ::setenv("TISSUEMESH_CCX", saved.c_str(), 1);
+    else
+      ::unsetenv("TISSUEMESH_CCX");
+    return r;
+  }
+
+  std::filesystem::path dir;
+};
+
+TEST_F(Check, CalculixAndBuiltInAgreeOnTheBlock) {
+  if (find_calculix().empty()) GTEST_SKIP() << "ccx not found (set TISSUEMESH_CCX or put ccx on PATH)";
+  const auto r = run_cli("check block.vtu -c block.yaml -o out --calculix", dir);
+  std::cout << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"check.json", "calculix/model.inp", "calculix/model.dat", "calculix/model.log"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+  for (const std::string& f : files_below(dir / "out"))
+    EXPECT_TRUE(f == "check.json" || f.rfind("calculix/", 0) == 0) << "unexpected output " << f;
+
+  const auto record = nlohmann::json::parse(read_file(dir / "out/check.json"));
+  const auto& c = record["comparison"];
+  const double max_rel = c["max_diff_rel"], mean_rel = c["mean_diff_rel"];
+  std::cout << "[ check    ] block tet4: max |u| CalculiX " << c["max_u_mm_calculix"] << " mm, built-in "
+            << c["max_u_mm_builtin"] << " mm; max diff " << 100 * max_rel << " %, mean diff " << 100 * mean_rel
+            << " % of max |u| (node " << c["max_diff_node"] << "); CalculiX " << record["calculix"]["seconds"]
+            << " s, built-in " << record["builtin"]["seconds"] << " s\n";
+  EXPECT_LE(max_rel, test::kCalculixSolutionRel);
+  EXPECT_LE(mean_rel, max_rel);
+  EXPECT_GT(c["max_u_mm_calculix"].get<double>(), 0.0);
+  EXPECT_GE(c["max_diff_node"].get<int>(), 1);
+  EXPECT_LE(c["max_diff_node"].get<int>(), record["model"]["nodes"].get<int>());
+
+  EXPECT_TRUE(record["builtin"]["converged"].get<bool>());
+  EXPECT_FALSE(record["builtin"]["reused_solve"].get<bool>());
+  EXPECT_EQ(record["calculix"]["exit_code"], 0);
+  EXPECT_EQ(record["calculix"]["version"], "2.20") << "Debian's calculix-ccx, the version the README cites";
+  EXPECT_EQ(record["calculix"]["inp"], "calculix/model.inp");
+  EXPECT_LE(record["equilibrium"]["imbalance_rel"].get<double>(), test::kSolverDefaultEquilibriumRel);
+  for (const char* key : {"command_line", "versions", "timings", "inputs", "config", "model"})
+    EXPECT_TRUE(record.contains(key)) << key;
+
+  // The compressible fat is checked as NEO HOOKE (noted, and in the deck); Mooney-Rivlin and
+  // Ogden are kept.
+  std::string notes;
+  for (const auto& n : record["notes"]) notes += n.get<std::string>() + "\n";
+  EXPECT_NE(notes.find("tissue 'fat': compressible-neo-hookean has no exact CalculiX equivalent"), std::string::npos)
+      << notes;
+  EXPECT_EQ(notes.find("'fgt'"), std::string::npos) << notes;
+  EXPECT_EQ(notes.find("'tumor'"), std::string::npos) << notes;
+  EXPECT_NE(r.out.find("compressible-neo-hookean has no exact CalculiX equivalent"), std::string::npos);
+  const std::string deck = read_file(dir / "out/calculix/model.inp");
+  EXPECT_NE(deck.find("NEO HOOKE"), std::string::npos);
+  EXPECT_NE(deck.find("MOONEY-RIVLIN"), std::string::npos);
+  EXPECT_NE(deck.find("OGDEN"), std::string::npos);
+  const auto& tissues = record["model"]["tissues"];
+  EXPECT_EQ(tissues[0]["law"], "neo-hookean") << "the summary is of the model both solvers solved";
+  EXPECT_EQ(tissues[1]["law"], "mooney-rivlin");
+
+  // The console: a progress note before CalculiX with the model size, its time after, the table.
+  for (const char* needle : {"ccx -i model: 396 nodes, 1500 tet4 elements", "ccx finished in", "max |u| [mm]",
+                             "wall time [s]", "% of CalculiX's max |u|", "built-in reaction [N]"})
+    EXPECT_NE(r.out.find(needle), std::string::npos) << needle;
+}
+
+TEST_F(Check, WithoutACrossCheckIsBadInput) {
+  const auto r = run_cli("check block.vtu -c block.yaml -o out", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("choose a cross-check: --calculix"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+}
+
+TEST_F(Check, NoCalculixIsBadInputSayingHowToGetIt) {
+  const auto r = run_with_ccx((dir / "no-such-ccx").string(), "check block.vtu -c block.yaml -o out --calculix");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  for (const char* needle : {"calculix-ccx", "TISSUEMESH_CCX"})
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+}
+
+TEST_F(Check, FailingCalculixIsAnInternalFailureShowingItsLog) {
+  // A stand-in ccx that fails the way ccx does: a message on stdout and a non-zero exit code.
+  const auto fake = dir / "fake-ccx";
+  std::ofstream(fake) << "#!/bin/sh\necho 'CalculiX Version 2.20'\necho '*ERROR reading *MATERIAL: fake failure'\n"
+                         "exit 201\n";
+  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  const auto r = run_with_ccx(fake.string(), "check block.vtu -c block.yaml -o out --calculix");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  for (const char* needle : {"exit code 201", "*ERROR reading *MATERIAL: fake failure"})
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out")) << "no partial output";
+}
+
+}  // namespace
