@@ -14,6 +14,7 @@
 
 #include "core/model_builder.h"
 #include "solver/column_reference.h"
+#include "support/model_fixture.h"
 #include "support/tolerances.h"
 
 #include <gtest/gtest.h>
@@ -56,44 +57,11 @@ MaterialSpec neo_hookean(MaterialLaw law, double nu) {
 const char* law_tag(MaterialLaw law) { return law == MaterialLaw::NeoHookean ? "J1sq" : "lnJ"; }
 const char* order_tag(ElementOrder order) { return order == ElementOrder::Linear ? "tet4" : "tet10"; }
 
-/// Box [lo, hi] on an nx x ny x nz grid, each cell split into the 6 Kuhn tetrahedra along its main
-/// diagonal (conforming, positively oriented), one tissue "tissue".
-TetMesh box_mesh(const Vector3d& lo, const Vector3d& hi, int nx, int ny, int nz) {
-  TetMesh mesh;
-  auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
-  const Vector3d step = (hi - lo).cwiseQuotient(Vector3d(nx, ny, nz));
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) mesh.points.push_back(lo + step.cwiseProduct(Vector3d(i, j, k)));
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        for (const auto& p : perms) {
-          int c[3] = {i, j, k};
-          std::array<int, 4> t;
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[p[s]];
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          const auto& P = mesh.points;
-          if (signed_tet_volume(P[t[0]], P[t[1]], P[t[2]], P[t[3]]) < 0) std::swap(t[2], t[3]);
-          mesh.tets.push_back(t);
-          mesh.tissue_ids.push_back(1);
-        }
-  mesh.tissue_names = {"tissue"};
-  return mesh;
-}
-
 /// A node set on the plane through `point` with `normal` (grid nodes lie on it exactly).
 NodeSetSettings plane_set(const std::string& name, const Vector3d& point, const Vector3d& normal, Constraint c) {
   NodeSetSettings s;
   s.name = name;
-  s.selection.kind = SetSelection::Kind::Plane;
-  s.selection.plane_point_mm = point;
-  s.selection.plane_normal = normal;
-  s.selection.plane_tolerance_mm = 1e-6;
+  s.selection = test::grid_plane(point, normal);
   s.constraint = c;
   return s;
 }
@@ -295,7 +263,7 @@ constexpr int kColumnAspect = 5;
 
 Model column_model(const ColumnCase& c, int n) {
   const TetMesh mesh =
-      box_mesh(Vector3d::Zero(), Vector3d(kColumnWidthMm, kColumnWidthMm, kColumnLengthMm), n, n, kColumnAspect * n);
+      test::box_mesh(Vector3d::Zero(), Vector3d(kColumnWidthMm, kColumnWidthMm, kColumnLengthMm), n, n, kColumnAspect * n);
   ModelSettings s = settings(c.order, Vector3d(0, 0, -1));
   const Vector3d ex = Vector3d::UnitX(), ey = Vector3d::UnitY(), ez = Vector3d::UnitZ();
   const Vector3d support = c.sign > 0 ? Vector3d(kColumnLengthMm * ez) : Vector3d::Zero();
@@ -405,7 +373,7 @@ Vector3d bar_exact(const Vector3d& X, double E, double nu) {
 
 Model bar_model(ElementOrder order, int m, MaterialLaw law) {
   const Vector3d lo(-kBarHalfWidthMm, -kBarHalfWidthMm, 0.0), hi(kBarHalfWidthMm, kBarHalfWidthMm, kBarLengthMm);
-  Model model = build(box_mesh(lo, hi, m, m, 2 * m), settings(order, Vector3d(0, 0, -1)), neo_hookean(law, kBarNu));
+  Model model = build(test::box_mesh(lo, hi, m, m, 2 * m), settings(order, Vector3d(0, 0, -1)), neo_hookean(law, kBarNu));
   model.analysis.load_steps = 1;
   return model;
 }
@@ -540,7 +508,7 @@ TEST_P(VerificationUniaxial, ReactionIsP11AndFreeFacesContract) {
   const UniaxialCase c = GetParam();
   const double side = 10.0, K = bulk_modulus(c.row.nu), lambda = c.row.lambda;
   const test::UniaxialState ref = test::uniaxial_stress(c.row.law, kMu, K, lambda);
-  TetMesh mesh = box_mesh(Vector3d::Zero(), Vector3d(side, side, side), 2, 2, 2);
+  TetMesh mesh = test::box_mesh(Vector3d::Zero(), Vector3d(side, side, side), 2, 2, 2);
   mesh.points[13] += Vector3d(0.4, -0.3, 0.5);  // the centre node (1,1,1) of the 3 x 3 x 3 grid
   ModelSettings s = settings(c.order, Vector3d::Zero());
   s.node_sets = {plane_set("roller_x0", Vector3d::Zero(), Vector3d::UnitX(), Constraint::Sliding)};

@@ -6,14 +6,13 @@
 
 namespace tissuemesh::test {
 
-TetMesh block_mesh() {
-  constexpr int nx = 10, ny = 5, nz = 5;
-  constexpr double h = 2.0;
+TetMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int nx, int ny, int nz) {
   TetMesh mesh;
   auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
+  const Eigen::Vector3d step = (hi - lo).cwiseQuotient(Eigen::Vector3d(nx, ny, nz));
   for (int k = 0; k <= nz; ++k)
     for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) mesh.points.emplace_back(h * i, h * j, h * k);
+      for (int i = 0; i <= nx; ++i) mesh.points.push_back(lo + step.cwiseProduct(Eigen::Vector3d(i, j, k)));
   // Kuhn split: the 6 monotone paths from corner (0,0,0) to (1,1,1) through the cube.
   const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   for (int k = 0; k < nz; ++k)
@@ -30,8 +29,19 @@ TetMesh block_mesh() {
           const auto& P = mesh.points;
           if (signed_tet_volume(P[t[0]], P[t[1]], P[t[2]], P[t[3]]) < 0) std::swap(t[2], t[3]);
           mesh.tets.push_back(t);
-          mesh.tissue_ids.push_back(i < 4 ? 1 : (i < 7 ? 2 : 3));
+          mesh.tissue_ids.push_back(1);
         }
+  mesh.tissue_names = {"tissue"};
+  return mesh;
+}
+
+TetMesh block_mesh() {
+  TetMesh mesh = box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(20, 10, 10), 10, 5, 5);
+  // Six tets per 2 mm cell in cell order: the tissue follows the cell's x index.
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const int i = static_cast<int>(t / 6) % 10;
+    mesh.tissue_ids[t] = i < 4 ? 1 : (i < 7 ? 2 : 3);
+  }
   mesh.tissue_names = {"fat", "fgt", "tumor"};
   return mesh;
 }
@@ -71,8 +81,7 @@ std::map<std::string, MaterialSpec> block_materials(bool ogden_tumor) {
   return m;
 }
 
-// A plane through grid nodes: the nodes lie on it exactly, so a tiny tolerance selects them all.
-static SetSelection grid_plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
+SetSelection grid_plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
   SetSelection s;
   s.kind = SetSelection::Kind::Plane;
   s.plane_point_mm = point;

@@ -14,7 +14,16 @@
 
 namespace tissuemesh::test {
 
+/// The box [lo, hi] on an nx x ny x nz grid of cells, each split into 6 positively oriented tets
+/// along its main diagonal (Kuhn split: conforming), cell by cell in x-fastest order; one tissue
+/// "tissue".
+TetMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int nx, int ny, int nz);
+
 TetMesh block_mesh();
+
+/// A plane selection through grid nodes: they lie on it exactly, so a 1e-6 mm tolerance takes
+/// them all and nothing else.
+SetSelection grid_plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal);
 
 struct BlockModelOptions {
   ElementOrder order = ElementOrder::Linear;
