@@ -48,8 +48,9 @@ class Solve : public ::testing::Test {
     write_vtu(test::block_mesh(), (dir / "block.vtu").string());
   }
   /// Writes <name>.yaml: the materials (or `materials`) and a `model:` section of `model_keys`
-  /// (each line indented by two spaces) after the wall.
-  std::string config(const std::string& name, const std::string& model_keys = "",
+  /// (each line indented by two spaces) after the wall. The default asks for tet4 explicitly: these
+  /// tissues have nu >= 0.49, so `element: auto` would choose tet10.
+  std::string config(const std::string& name, const std::string& model_keys = "  element: tet4\n",
                      const std::string& materials = kMaterials) {
     std::ofstream(dir / (name + ".yaml")) << materials << "model:\n" << kWall << model_keys;
     return name + ".yaml";
@@ -212,7 +213,7 @@ TEST_F(Solve, Tet10SolutionKeepsTheModelOrderAndEveryUnitSystemGivesTheSameMilli
   // The same tet4 model solved in mm-t-s, SI (metres, Pa) and mm-kg-s (mN): reported in mm and N.
   std::vector<nlohmann::json> results;
   for (const char* units : {"mm-t-s", "SI", "mm-kg-s"}) {
-    const std::string cfg = config(std::string("units-") + units, std::string("  units: ") + units + "\n");
+    const std::string cfg = config(std::string("units-") + units, std::string("  element: tet4\n  units: ") + units + "\n");
     const auto run = run_cli("solve block.vtu -c " + cfg + " -o " + units, dir);
     ASSERT_EQ(run.exit_code, 0) << units << ": " << run.err;
     results.push_back(nlohmann::json::parse(read_file(dir / units / "solve.json"))["results"]);
@@ -254,6 +255,7 @@ TEST_F(Solve, NonConvergenceWritesTheLastAcceptedStateAndExitsOne) {
   // with the displacement, which it is), and no increment below half the load is allowed.
   const std::string soft = std::regex_replace(std::string(kMaterials), std::regex("mu: 150 Pa"), "mu: 1 Pa");
   const std::string cfg = config("stuck",
+                                 "  element: tet4\n"
                                  "  gravity: {direction: prone, acceleration: 100 m/s^2}\n"
                                  "  analysis: {load_steps: 1, max_newton_iterations: 1, min_step_fraction: 0.5}\n",
                                  soft);
