@@ -93,7 +93,10 @@ TEST_P(HomogeneousDeformation, NoDisplacementAndRigidRotationGiveNoStress) {
 
 INSTANTIATE_TEST_SUITE_P(CellFields, HomogeneousDeformation,
                          ::testing::Combine(::testing::Values(ElementOrder::Linear, ElementOrder::Quadratic),
-                                            ::testing::Values(UnitSystem::MillimetreTonneSecond, UnitSystem::SI)));
+                                            ::testing::Values(UnitSystem::MillimetreTonneSecond, UnitSystem::SI)),
+                         [](const auto& info) {
+                           return test::order_units_name(std::get<0>(info.param), std::get<1>(info.param));
+                         });
 
 TEST(CellFields, VonMisesOfUniaxialAndShearStress) {
   EXPECT_DOUBLE_EQ(von_mises((StressVoigt() << 250, 0, 0, 0, 0, 0).finished()), 250.0);

@@ -80,7 +80,10 @@ TEST_P(TissueMotionTest, LargestNodalDisplacementAndItsNode) {
 
 INSTANTIATE_TEST_SUITE_P(TissueMotion, TissueMotionTest,
                          ::testing::Combine(::testing::Values(ElementOrder::Linear, ElementOrder::Quadratic),
-                                            ::testing::Values(UnitSystem::MillimetreTonneSecond, UnitSystem::SI)));
+                                            ::testing::Values(UnitSystem::MillimetreTonneSecond, UnitSystem::SI)),
+                         [](const auto& info) {
+                           return test::order_units_name(std::get<0>(info.param), std::get<1>(info.param));
+                         });
 
 }  // namespace
 }  // namespace tissuemesh

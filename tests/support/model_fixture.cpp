@@ -111,4 +111,11 @@ Model block_model(const BlockModelOptions& options) {
   return build_model(block_mesh(), block_settings(options), block_materials(options.ogden_tumor), "test fixture");
 }
 
+std::string order_units_name(ElementOrder order, UnitSystem units) {
+  std::string name = std::string(order == ElementOrder::Linear ? "tet4" : "tet10") + "_" + unit_system_name(units);
+  for (char& c : name)
+    if (c == '-') c = '_';  // test names take [A-Za-z0-9_] only
+  return name;
+}
+
 }  // namespace tissuemesh::test

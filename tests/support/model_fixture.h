@@ -40,4 +40,7 @@ std::map<std::string, MaterialSpec> block_materials(bool ogden_tumor);
 ModelSettings block_settings(const BlockModelOptions& options);
 Model block_model(const BlockModelOptions& options = {});
 
+/// Readable name of a (element order, unit system) test parameter: "tet4_mm_t_s", "tet10_SI", ...
+std::string order_units_name(ElementOrder order, UnitSystem units);
+
 }  // namespace tissuemesh::test
