@@ -77,6 +77,16 @@ void write_text_file(const std::filesystem::path& path, const std::string& text)
   if (!f.flush()) throw OutputError(path.string() + ": cannot write");
 }
 
+void add_model_job_options(CLI::App& sub, ModelJobOptions& options) {
+  sub.add_option("MESH", options.mesh, "tetrahedral mesh written by `tissuemesh mesh` (mesh.vtu)")->required();
+  sub.add_option("-c,--config", options.config,
+                 "config with `materials:` and `model:` (units, element, node sets, gravity, analysis settings); "
+                 "e.g. configs/phantom.yaml")
+      ->required();
+  sub.add_option("-o,--out", options.out, "output directory");
+  sub.add_flag("--print-config", options.print_config, "print the effective config (defaults filled in) and exit");
+}
+
 bool print_config_or_require_out(bool print_config, const std::string& effective_yaml, const std::string& out) {
   if (print_config) {
     std::cout << effective_yaml;

@@ -7,6 +7,8 @@
 
 #include "core/progress.h"
 
+#include <CLI/CLI.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -28,6 +30,15 @@ nlohmann::json run_record_common(const Progress& progress, const std::string& co
 
 /// Writes `text` to `path` (a staged output); OutputError naming the path when it cannot.
 void write_text_file(const std::filesystem::path& path, const std::string& text);
+
+/// What `export`, `solve` and `check` all take: MESH, -c CONFIG, -o DIR, --print-config.
+struct ModelJobOptions {
+  std::string mesh, config, out;
+  bool print_config = false;
+};
+
+/// Declares MESH (required), -c/--config (required), -o/--out and --print-config on `sub`.
+void add_model_job_options(CLI::App& sub, ModelJobOptions& options);
 
 /// The preamble of the commands that take -c CONFIG, -o DIR and --print-config: when
 /// `print_config`, prints `effective_yaml` and returns false (the command is done); otherwise throws

@@ -15,10 +15,8 @@
 namespace tissuemesh::app {
 
 namespace {
-struct CheckCliOptions {
-  std::string mesh, config, out;
+struct CheckCliOptions : ModelJobOptions {
   bool calculix = false;
-  bool print_config = false;
 };
 }  // namespace
 
@@ -27,24 +25,16 @@ void add_check_command(CLI::App& cli, Invocation& run) {
   CLI::App* sub = cli.add_subcommand(
       "check", "Cross-checks of the model of MESH + CONFIG: --calculix solves it with CalculiX (ccx) and with the "
                "built-in solver and compares the displacements (DIR/check.json, DIR/calculix/)");
-  sub->add_option("MESH", opt->mesh, "tetrahedral mesh written by `tissuemesh mesh` (mesh.vtu)")->required();
-  sub->add_option("-c,--config", opt->config, "config with `materials:` and `model:` (e.g. configs/phantom.yaml)")
-      ->required();
-  sub->add_option("-o,--out", opt->out, "output directory");
+  add_model_job_options(*sub, *opt);
   sub->add_flag("--calculix", opt->calculix,
                 "CalculiX (ccx, 2 threads) against the built-in solver on the same deck: max and mean nodal "
                 "difference relative to the max displacement; compressible-neo-hookean tissues are checked as "
                 "the uncoupled neo-hookean (noted)");
-  sub->add_flag("--print-config", opt->print_config, "print the effective config (defaults filled in) and exit");
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("check", [&] {
       const JobConfig config = JobConfig::load(opt->config);
-      if (opt->print_config) {
-        std::cout << config.to_yaml();
-        return;
-      }
+      if (!print_config_or_require_out(opt->print_config, config.to_yaml(), opt->out)) return;
       if (!opt->calculix) throw InputError("choose a cross-check: --calculix");
-      if (opt->out.empty()) throw InputError("--out DIR is required");
       require_calculix();  // before reading and building
       OutputDir out(opt->out);
       Progress progress = console_progress();

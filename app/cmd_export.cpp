@@ -13,10 +13,8 @@
 namespace tissuemesh::app {
 
 namespace {
-struct ExportCliOptions {
-  std::string mesh, config, out;
+struct ExportCliOptions : ModelJobOptions {
   std::vector<std::string> formats;
-  bool print_config = false;
 };
 
 std::string format_help() {
@@ -31,12 +29,8 @@ void add_export_command(CLI::App& cli, Invocation& run) {
   CLI::App* sub = cli.add_subcommand(
       "export", "Mesh + materials + boundary conditions + gravity -> FEBio .feb, Abaqus/CalculiX .inp, SOFA .scn, "
                 ".vtu, .msh in DIR, with DIR/export.json");
-  sub->add_option("MESH", opt->mesh, "tetrahedral mesh written by `tissuemesh mesh` (mesh.vtu)")->required();
-  sub->add_option("-c,--config", opt->config, "config with `materials:` and `model:` (e.g. configs/phantom.yaml)")
-      ->required();
-  sub->add_option("-o,--out", opt->out, "output directory");
+  add_model_job_options(*sub, *opt);
   sub->add_option("--format", opt->formats, format_help())->delimiter(',');
-  sub->add_flag("--print-config", opt->print_config, "print the effective config (defaults filled in) and exit");
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("export", [&] {
       const JobConfig config = JobConfig::load(opt->config);

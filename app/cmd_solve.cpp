@@ -15,10 +15,8 @@
 namespace tissuemesh::app {
 
 namespace {
-struct SolveCliOptions {
-  std::string mesh, config, out;
+struct SolveCliOptions : ModelJobOptions {
   int threads = 0;
-  bool print_config = false;
 };
 }  // namespace
 
@@ -31,15 +29,9 @@ void add_solve_command(CLI::App& cli, Invocation& run) {
       "Cauchy and von Mises stress in Pa and J per element) and DIR/solve.json (run record: every load increment, "
       "per-tissue mean displacement in mm, reaction and weight in N). Exit 1 when the solve does not converge "
       "(the files of the last accepted load fraction are still written).");
-  sub->add_option("MESH", opt->mesh, "tetrahedral mesh written by `tissuemesh mesh` (mesh.vtu)")->required();
-  sub->add_option("-c,--config", opt->config,
-                  "config with `materials:` and `model:` (units, element, chest wall, gravity, analysis settings); "
-                  "e.g. configs/phantom.yaml")
-      ->required();
-  sub->add_option("-o,--out", opt->out, "output directory");
+  add_model_job_options(*sub, *opt);
   sub->add_option("--threads", opt->threads, "assembly threads (default 0: $OMP_NUM_THREADS, else all processors)")
       ->check(CLI::NonNegativeNumber);
-  sub->add_flag("--print-config", opt->print_config, "print the effective config (defaults filled in) and exit");
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("solve", [&] {
       const JobConfig config = JobConfig::load(opt->config);
