@@ -83,7 +83,6 @@ DofMap::DofMap(const Model& model, const std::vector<PrescribedDisplacement>& pr
       throw InputError("prescribed displacement of node " + std::to_string(p.node) + " is not finite");
     fixed[p.node] = 1;
     prescribed_[p.node] = p.value;
-    has_prescribed_ = true;
   }
 
   for (int v = 0; v < n; ++v) {

@@ -39,11 +39,8 @@ class DofMap {
   bool unconstrained(int v) const { return count_[v] == 3; }
   /// Columns 0..count(v)-1: the allowed directions of node v (orthonormal).
   const Eigen::Matrix3d& basis(int v) const { return basis_[v]; }
-  /// lambda = 1 value imposed on node v (zero unless prescribed).
-  const Eigen::Vector3d& prescribed(int v) const { return prescribed_[v]; }
   /// Nodes with count < 3 (fixed, sliding or prescribed), sorted.
   const std::vector<int>& constrained_nodes() const { return constrained_; }
-  bool has_prescribed() const { return has_prescribed_; }
 
   /// Global displacement (3 per node) of reduced unknowns q at load factor lambda.
   Eigen::VectorXd expand(const Eigen::VectorXd& q, double lambda) const;
@@ -55,10 +52,9 @@ class DofMap {
  private:
   std::vector<int> count_, first_;
   std::vector<Eigen::Matrix3d> basis_;
-  std::vector<Eigen::Vector3d> prescribed_;
+  std::vector<Eigen::Vector3d> prescribed_;  ///< lambda = 1 value per node (zero unless prescribed)
   std::vector<int> constrained_;
   int num_free_ = 0;
-  bool has_prescribed_ = false;
 };
 
 }  // namespace tissuemesh
