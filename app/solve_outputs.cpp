@@ -112,6 +112,7 @@ nlohmann::json solver_json(const SolveResult& r) {
           {"preconditioned_cg_iterations", r.linear_iterations},
           {"assembly_seconds", r.assembly_seconds},
           {"linear_solve_seconds", r.linear_solve_seconds},
+          {"factorisation_seconds", r.factorisation_seconds},
           {"seconds", r.seconds},
           {"steps", steps}};
 }

@@ -7,6 +7,7 @@
 #include <Eigen/CholmodSupport>
 #endif
 
+#include <chrono>
 #include <cmath>
 
 namespace tissuemesh {
@@ -133,7 +134,10 @@ bool SparseSpdSolver::solve(const SparseMatrix& K, const Eigen::VectorXd& b, Eig
   // 1. The kept factorisation as preconditioner.
   if (impl_->have_factor && impl_->pcg(K, b, x, rtol, kMaxIterations, iterations_)) return true;
   // 2. A new factorisation.
-  if (!impl_->factorise(K, shifted_)) return false;
+  const auto start = std::chrono::steady_clock::now();
+  const bool factorised = impl_->factorise(K, shifted_);
+  factorisation_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!factorised) return false;
   ++factorisations_;
   if (impl_->exact_factor) {
     x = impl_->apply_factor(b);

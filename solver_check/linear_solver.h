@@ -47,6 +47,8 @@ class SparseSpdSolver {
   int factorisations() const { return factorisations_; }
   int shifted_factorisations() const { return shifted_; }
   int iterations() const { return iterations_; }
+  /// Wall time spent in numeric factorisations (including failed, unshifted attempts).
+  double factorisation_seconds() const { return factorisation_seconds_; }
 
  private:
   struct Impl;
@@ -54,6 +56,7 @@ class SparseSpdSolver {
   int factorisations_ = 0;
   int shifted_ = 0;
   int iterations_ = 0;
+  double factorisation_seconds_ = 0.0;
 };
 
 }  // namespace tissuemesh

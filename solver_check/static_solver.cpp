@@ -312,6 +312,7 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   result.factorisations = linear.factorisations();
   result.shifted_factorisations = linear.shifted_factorisations();
   result.linear_iterations = linear.iterations();
+  result.factorisation_seconds = linear.factorisation_seconds();
   if (result.converged) {
     std::ostringstream msg;
     msg << "converged: " << result.steps.size() << " increments, " << result.total_iterations

@@ -130,6 +130,7 @@ struct SolveResult {
   int linear_iterations = 0;      ///< preconditioned CG iterations on kept factorisations
   double assembly_seconds = 0.0;  ///< wall time in element evaluation and assembly
   double linear_solve_seconds = 0.0;  ///< wall time in factorisation and solves
+  double factorisation_seconds = 0.0; ///< of it, in numeric factorisations
   double seconds = 0.0;           ///< wall time of the solve
 };
 
