@@ -22,7 +22,7 @@ struct MeshOptions {
 
 void add_mesh_command(CLI::App& cli, Invocation& run) {
   auto opt = std::make_shared<MeshOptions>();
-  CLI::App* sub = cli.add_subcommand("mesh", "Mesh a label image: DIR/mesh.vtu, DIR/report.json, DIR/report.txt");
+  CLI::App* sub = cli.add_subcommand("mesh", "Mesh a label image: DIR/mesh.vtu (pipeline: surface: DIR/surface.vtp, DIR/junctions.vtp), DIR/report.json, DIR/report.txt");
   sub->add_option("LABELS", opt->labels, "label image (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd)")->required();
   sub->add_option("-c,--config", opt->config, "meshing config (YAML), e.g. configs/breast-generic.yaml")->required();
   sub->add_option("-o,--out", opt->out, "output directory");
@@ -42,6 +42,13 @@ void add_mesh_command(CLI::App& cli, Invocation& run) {
       const nlohmann::json inputs = {{"labels", std::filesystem::absolute(opt->labels).string()},
                                      {"labels_bytes", std::filesystem::file_size(opt->labels)},
                                      {"config", std::filesystem::absolute(opt->config).string()}};
+      if (config.pipeline == "surface") {
+        surface_into(labels, opt->labels, config, inputs, run.command_line, progress, out);
+        out.commit();
+        std::cout << "wrote " << out.final_path("surface.vtp").string()
+                  << ", junctions.vtp, report.json, report.txt (volume meshing of the surface pipeline: issue #6)\n";
+        return;
+      }
       mesh_into(labels, opt->labels, config, inputs, run.command_line, progress, out);
       out.commit();
       std::cout << "wrote " << out.final_path("mesh.vtu").string() << ", report.json, report.txt\n";

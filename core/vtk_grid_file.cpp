@@ -7,6 +7,7 @@
 #include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkStringArray.h>
+#include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
 namespace tissuemesh {
@@ -20,9 +21,26 @@ class ErrorCapture : public vtkCommand {
   void Execute(vtkObject*, unsigned long, void*) override { failed = true; }
   bool failed = false;
 };
+
+template <typename Writer, typename Data>
+void write_xml(Data& data, const std::vector<std::string>& tissue_names, const std::string& path, const char* kind) {
+  add_string_field(data, "tissue_names", tissue_names);
+  add_string_field(data, "coordinate_system", {"LPS"});
+  add_string_field(data, "length_unit", {"mm"});
+  vtkNew<Writer> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(&data);
+  writer->SetDataModeToAppended();
+  writer->SetCompressorTypeToZLib();
+  vtkNew<ErrorCapture> errors;
+  writer->AddObserver(vtkCommand::ErrorEvent, errors);
+  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);  // "returned failure" report
+  if (writer->Write() != 1 || errors->failed)
+    throw OutputError(path + ": cannot write " + kind + " file (missing or read-only directory, or disk full?)");
+}
 }  // namespace
 
-void add_string_field(vtkUnstructuredGrid& grid, const char* name, const std::vector<std::string>& values) {
+void add_string_field(vtkDataObject& grid, const char* name, const std::vector<std::string>& values) {
   vtkNew<vtkStringArray> a;
   a->SetName(name);
   a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
@@ -31,19 +49,11 @@ void add_string_field(vtkUnstructuredGrid& grid, const char* name, const std::ve
 }
 
 void write_grid_vtu(vtkUnstructuredGrid& grid, const std::vector<std::string>& tissue_names, const std::string& path) {
-  add_string_field(grid, "tissue_names", tissue_names);
-  add_string_field(grid, "coordinate_system", {"LPS"});
-  add_string_field(grid, "length_unit", {"mm"});
-  vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(&grid);
-  writer->SetDataModeToAppended();
-  writer->SetCompressorTypeToZLib();
-  vtkNew<ErrorCapture> errors;
-  writer->AddObserver(vtkCommand::ErrorEvent, errors);
-  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);  // "returned failure" report
-  if (writer->Write() != 1 || errors->failed)
-    throw OutputError(path + ": cannot write VTU file (missing or read-only directory, or disk full?)");
+  write_xml<vtkXMLUnstructuredGridWriter>(grid, tissue_names, path, "VTU");
+}
+
+void write_polydata_vtp(vtkPolyData& data, const std::vector<std::string>& tissue_names, const std::string& path) {
+  write_xml<vtkXMLPolyDataWriter>(data, tissue_names, path, "VTP");
 }
 
 }  // namespace tissuemesh

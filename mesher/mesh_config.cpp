@@ -15,13 +15,14 @@ MeshConfig MeshConfig::from_top(YamlMap& top) {
   MeshConfig c;
   c.source = top.source();
   c.pipeline = top.text("pipeline", c.pipeline);
-  if (c.pipeline != "direct") {
-    throw InputError(top.where("pipeline") + ": unknown pipeline '" + c.pipeline +
-                     "' (supported: direct; 'surface' is not implemented yet)");
+  if (c.pipeline != "direct" && c.pipeline != "surface") {
+    throw InputError(top.where("pipeline") + ": unknown pipeline '" + c.pipeline + "' (supported: direct, surface)");
   }
   c.tissues = TissueTable::from_config(top);
   YamlMap direct = top.map("direct");
   c.direct = DirectMeshParams::from_yaml(direct);
+  YamlMap surface = top.map("surface");
+  c.surface = SurfaceParams::from_yaml(surface);
   YamlMap phantom = top.map("phantom");
   c.phantom = parse_phantom_params(phantom);
   phantom.finish();
@@ -55,6 +56,8 @@ void MeshConfig::emit_keys(YAML::Emitter& out) const {
   tissues.to_yaml(out);
   out << YAML::Key << "direct" << YAML::Value;
   direct.to_yaml(out);
+  out << YAML::Key << "surface" << YAML::Value;
+  surface.to_yaml(out);
   out << YAML::Key << "phantom" << YAML::Value;
   phantom_params_to_yaml(phantom, out);
 }

@@ -1,9 +1,11 @@
 // MeshConfig: the schema of a meshing config file (YAML), owned by code.
 //
-//   pipeline: direct            # 'direct' (CGAL from the image). 'surface' arrives with issue #5.
+//   pipeline: direct            # 'direct' (CGAL from the image) or 'surface' (mesher/surface_job.h:
+//                               # multi-material surface; its volume meshing arrives with issue #6)
 //   tissues: [...]              # see core/tissue_table.h
 //   ignore_labels: [0]
 //   direct: {...}               # see mesher/direct_mesh_params.h
+//   surface: {...}              # see mesher/surface_params.h
 //   phantom: {...}              # optional: the phantom `tissuemesh demo` generates (phantom.h)
 //
 // Unknown keys anywhere are errors naming the file and key path. `to_yaml()` prints the effective
@@ -13,6 +15,7 @@
 #include "core/tissue_table.h"
 #include "mesher/direct_mesh_params.h"
 #include "mesher/phantom.h"
+#include "mesher/surface_params.h"
 
 #include <string>
 
@@ -23,6 +26,7 @@ struct MeshConfig {
   std::string pipeline = "direct";
   TissueTable tissues;
   DirectMeshParams direct;
+  SurfaceParams surface;
   PhantomParams phantom;
 
   /// Loads and validates a config file; throws InputError naming the file and key.

@@ -25,7 +25,13 @@ struct MeshJobResult {
   ConformityReport conformity;
 };
 
-/// `image_name` names the image in error messages.
+/// The first step of every pipeline: checks `labels` against the tissue table (unknown labels,
+/// empty tissues -> InputError naming `image_name`) and returns the tissue-id image (0 = outside);
+/// `voxel_volume_mm3` receives each tissue's voxel volume.
+LabelImage tissue_id_image(const LabelImage& labels, const std::string& image_name, const TissueTable& tissues,
+                           std::map<int, double>& voxel_volume_mm3, Progress& progress);
+
+/// The direct pipeline. `image_name` names the image in error messages.
 MeshJobResult run_mesh_job(const LabelImage& labels, const std::string& image_name,
                            const MeshConfig& config, Progress& progress);
 

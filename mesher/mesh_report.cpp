@@ -120,4 +120,75 @@ std::string mesh_job_text(const MeshJobResult& r) {
   return s.str();
 }
 
+namespace {
+double volume_error_percent(const TissueSurfaceCheck& t, const std::map<int, double>& voxel_volume_mm3) {
+  const auto it = voxel_volume_mm3.find(t.tissue_id);
+  return it == voxel_volume_mm3.end() || it->second <= 0.0 ? 0.0 : 100.0 * (t.volume_mm3 - it->second) / it->second;
+}
+}  // namespace
+
+nlohmann::json surface_job_json(const SurfaceJobResult& r) {
+  const TriSurface& s = r.extraction.surface;
+  const SurfaceQuality& q = r.quality;
+  nlohmann::json j;
+  j["vertices"] = s.points.size();
+  j["triangles"] = s.triangles.size();
+  j["junction_polylines"] = s.junctions.size();
+  j["junction_curve_vertices"] = r.extraction.curve_vertices;
+  j["junction_corner_vertices"] = r.extraction.corner_vertices;
+  j["unfolded_vertex_moves"] = r.extraction.unfolded_vertices;
+  j["voxel_repair"] = {{"relabelled_voxels", r.extraction.repair.relabelled_voxels},
+                       {"passes", r.extraction.repair.passes}};
+  j["table1_quality"] = {{"average_min_angle_deg", q.average_min_angle_deg}, {"min_angle_deg", q.min_angle_deg},
+                         {"p30_percent", q.p30_percent},  {"q_average", q.q_average},
+                         {"q_min", q.q_min},                 {"mean_edge_mm", q.mean_edge_mm}};
+  nlohmann::json tissues = nlohmann::json::array();
+  for (const auto& t : r.checks.tissues)
+    tissues.push_back({{"tissue", t.name},
+                       {"vertices", t.vertices},
+                       {"triangles", t.triangles},
+                       {"closed_and_oriented", t.closed_and_oriented()},
+                       {"open_edges", t.open_edges},
+                       {"nonmanifold_edges", t.nonmanifold_edges},
+                       {"misoriented_edges", t.misoriented_edges},
+                       {"intersecting_triangle_pairs", t.intersecting_pairs},
+                       {"enclosed_volume_mm3", t.volume_mm3},
+                       {"voxel_volume_mm3", r.voxel_volume_mm3.count(t.tissue_id) ? r.voxel_volume_mm3.at(t.tissue_id) : 0.0},
+                       {"volume_error_percent", volume_error_percent(t, r.voxel_volume_mm3)}});
+  j["table2_tissues"] = tissues;
+  j["duplicate_triangles"] = r.checks.duplicate_triangles;
+  j["junction_edges"] = r.checks.junction_edges;
+  j["junction_edges_off_junction"] = r.checks.junction_edges_off_junction;
+  j["valid"] = r.checks.valid();
+  return j;
+}
+
+std::string surface_job_text(const SurfaceJobResult& r) {
+  const TriSurface& s = r.extraction.surface;
+  const SurfaceQuality& q = r.quality;
+  std::ostringstream o;
+  o << "surface: " << s.points.size() << " vertices, " << s.triangles.size() << " triangles (each interface once), "
+    << s.junctions.size() << " junction polylines (" << r.extraction.curve_vertices << " curve vertices, "
+    << r.extraction.corner_vertices << " corners); " << r.extraction.repair.relabelled_voxels
+    << " voxels relabelled to remove non-manifold configurations, " << r.extraction.unfolded_vertices
+    << " vertex moves to undo folds\n\n";
+  o << "Table 1 (triangle quality)  avg min angle [deg]  min angle [deg]  P30 [%]   Q_av    Q_min   mean edge [mm]\n";
+  o << fmt("                             %19.3f  %15.3f", q.average_min_angle_deg, q.min_angle_deg)
+    << fmt("  %7.4f  %6.4f  %6.4f", q.p30_percent, q.q_average, q.q_min) << fmt("  %14.3f\n\n", q.mean_edge_mm);
+  o << "Table 2 and checks  vertices  triangles  closed+oriented  intersecting pairs  volume [mm^3]  voxel volume [mm^3]  error [%]\n";
+  for (const auto& t : r.checks.tissues) {
+    const double voxel = r.voxel_volume_mm3.count(t.tissue_id) ? r.voxel_volume_mm3.at(t.tissue_id) : 0.0;
+    char line[256];
+    std::snprintf(line, sizeof line, "  %-16s  %8zu  %9zu  %15s  %18lld  %13.1f  %19.1f  %9.3f\n", t.name.c_str(),
+                  t.vertices, t.triangles, t.closed_and_oriented() ? "yes" : "NO", t.intersecting_pairs, t.volume_mm3,
+                  voxel, volume_error_percent(t, r.voxel_volume_mm3));
+    o << line;
+  }
+  o << "\ntriangles stored twice: " << r.checks.duplicate_triangles << "; junction edges: " << r.checks.junction_edges
+    << " (" << r.checks.junction_edges_off_junction << " not where >= 3 triangles meet)\n";
+  o << (r.checks.valid() ? "surface valid: every tissue closed, oriented and intersection free\n"
+                         : "WARNING: the surface fails a check above\n");
+  return o.str();
+}
+
 }  // namespace tissuemesh

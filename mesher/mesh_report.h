@@ -5,6 +5,7 @@
 #include "core/label_image.h"
 #include "core/tet_mesh.h"
 #include "mesher/mesh_job.h"
+#include "mesher/surface_job.h"
 
 #include <nlohmann/json.hpp>
 
@@ -25,5 +26,11 @@ std::string mesh_summary_text(const TetMesh& mesh);
 /// image components and the ones the mesh misses (by tissue, size and position).
 nlohmann::json mesh_job_json(const MeshJobResult& result);
 std::string mesh_job_text(const MeshJobResult& result);
+
+/// The result part of a surface-pipeline run: counts, voxel repair, the paper's Table 1 (quality)
+/// and Table 2 (vertices and triangles per tissue), per-tissue closedness/orientation/intersections
+/// and enclosed volume against voxel volume, stored-twice and junction checks.
+nlohmann::json surface_job_json(const SurfaceJobResult& result);
+std::string surface_job_text(const SurfaceJobResult& result);
 
 }  // namespace tissuemesh

@@ -28,6 +28,11 @@ constexpr double kSmallImageVolumeRel = 0.05;
 /// round-off remains; 1e-6 relative.
 constexpr double kFlatInterfaceVolumeRel = 1e-6;
 
+/// A surface vertex that constrained relaxation keeps on an axis-aligned plane or line (a flat
+/// interface, a straight junction): its coordinate there is an average of equal values, clamped and
+/// mapped to millimetres, so only a few ulps of ~20 mm of round-off remain; 1e-9 mm.
+constexpr double kConstrainedCoordinateMm = 1e-9;
+
 /// Central finite differences of smooth functions with step 1e-6 at unit-scale arguments:
 /// truncation ~1e-12 and round-off ~1e-10 relative to the function scale; 1e-7 relative to the
 /// size of the derivative separates a right formula from a wrong one (errors are O(1) then).

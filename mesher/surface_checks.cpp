@@ -1,0 +1,142 @@
+#include "mesher/surface_checks.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <map>
+
+namespace tissuemesh {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+
+std::uint64_t edge_key(int a, int b) {
+  return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
+}
+
+/// Edge usage of oriented triangles: open, non-manifold and misoriented edge counts.
+void count_edges(const std::vector<std::array<int, 3>>& tris, TissueSurfaceCheck& c) {
+  std::vector<std::pair<std::uint64_t, int>> uses;  // key, +1 if stored min->max else -1
+  uses.reserve(3 * tris.size());
+  for (const auto& t : tris)
+    for (int e = 0; e < 3; ++e) {
+      const int a = t[e], b = t[(e + 1) % 3];
+      uses.emplace_back(edge_key(a, b), a < b ? 1 : -1);
+    }
+  std::sort(uses.begin(), uses.end());
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    int balance = 0;
+    while (j < uses.size() && uses[j].first == uses[i].first) balance += uses[j++].second;
+    const std::size_t n = j - i;
+    if (n == 1) ++c.open_edges;
+    else if (n > 2) ++c.nonmanifold_edges;
+    else if (balance != 0) ++c.misoriented_edges;
+    i = j;
+  }
+}
+
+/// Intersecting pairs of a closed oriented triangle set, as positions in `polygons`; false when
+/// the set is not a valid polygon mesh (then nothing is checked).
+bool intersecting_pairs(const std::vector<Kernel::Point_3>& points, const std::vector<std::array<int, 3>>& polygons,
+                        std::vector<std::pair<int, int>>& out) {
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return false;
+  Mesh mesh;
+  // Faces are created in polygon order, so face index i is polygons[i].
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
+  PMP::self_intersections(faces(mesh), mesh, std::back_inserter(pairs));
+  for (const auto& [f, g] : pairs) out.emplace_back(static_cast<int>(f.idx()), static_cast<int>(g.idx()));
+  return true;
+}
+
+/// Per tissue: the check without intersections, its outward triangles and their global ids.
+TissueSurfaceCheck tissue_check(const TriSurface& s, int id, std::vector<std::pair<int, int>>* pairs) {
+  TissueSurfaceCheck c;
+  c.tissue_id = id;
+  c.name = s.tissue_names[static_cast<std::size_t>(id - 1)];
+  std::vector<int> ids;
+  std::vector<char> reversed;
+  s.tissue_boundary(id, ids, reversed);
+  std::map<int, int> local;  // global vertex -> local index (ascending: deterministic)
+  std::vector<std::array<int, 3>> tris;
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    auto t = s.triangles[static_cast<std::size_t>(ids[k])];
+    if (reversed[k]) std::swap(t[1], t[2]);
+    tris.push_back(t);
+    for (int v : t) local.emplace(v, 0);
+  }
+  c.triangles = tris.size();
+  c.vertices = local.size();
+  count_edges(tris, c);
+  for (const auto& t : tris) {
+    const Eigen::Vector3d &a = s.points[t[0]], &b = s.points[t[1]], &d = s.points[t[2]];
+    c.volume_mm3 += a.dot(b.cross(d)) / 6.0;
+  }
+  if (c.closed_and_oriented() && !tris.empty()) {
+    std::vector<Kernel::Point_3> points;
+    int next = 0;
+    for (auto& [v, index] : local) {
+      index = next++;
+      points.emplace_back(s.points[v][0], s.points[v][1], s.points[v][2]);
+    }
+    for (auto& t : tris)
+      for (int& v : t) v = local[v];
+    std::vector<std::pair<int, int>> found;
+    if (intersecting_pairs(points, tris, found)) {
+      c.intersecting_pairs = static_cast<long long>(found.size());
+      if (pairs)
+        for (const auto& [a, b] : found) pairs->emplace_back(ids[static_cast<std::size_t>(a)], ids[static_cast<std::size_t>(b)]);
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+bool SurfaceCheckReport::valid() const {
+  for (const auto& t : tissues)
+    if (!t.closed_and_oriented() || t.intersecting_pairs != 0) return false;
+  return duplicate_triangles == 0 && junction_edges_off_junction == 0;
+}
+
+SurfaceCheckReport check_surface(const TriSurface& s) {
+  SurfaceCheckReport report;
+  for (int id = 1; id <= static_cast<int>(s.tissue_names.size()); ++id) report.tissues.push_back(tissue_check(s, id, nullptr));
+
+  std::vector<std::array<int, 3>> sorted = s.triangles;
+  for (auto& t : sorted) std::sort(t.begin(), t.end());
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 1; i < sorted.size(); ++i) report.duplicate_triangles += sorted[i] == sorted[i - 1];
+
+  std::map<std::uint64_t, int> edge_triangles;
+  for (const auto& j : s.junctions)
+    for (std::size_t k = 0; k + 1 < j.size(); ++k) edge_triangles.emplace(edge_key(j[k], j[k + 1]), 0);
+  for (const auto& t : s.triangles)
+    for (int e = 0; e < 3; ++e) {
+      auto it = edge_triangles.find(edge_key(t[e], t[(e + 1) % 3]));
+      if (it != edge_triangles.end()) ++it->second;
+    }
+  report.junction_edges = edge_triangles.size();
+  for (const auto& [key, n] : edge_triangles) report.junction_edges_off_junction += n < 3;
+  return report;
+}
+
+std::vector<int> intersecting_triangles(const TriSurface& s) {
+  std::vector<std::pair<int, int>> pairs;
+  for (int id = 1; id <= static_cast<int>(s.tissue_names.size()); ++id) tissue_check(s, id, &pairs);
+  std::vector<int> out;
+  for (const auto& [a, b] : pairs) out.insert(out.end(), {a, b});
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace tissuemesh

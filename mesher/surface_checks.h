@@ -1,0 +1,53 @@
+// Topological and geometric checks of a multi-material TriSurface (issue #5 acceptance).
+//
+// Per tissue (its boundary as TriSurface::tissue_boundary gives it, oriented outward):
+//   closed      every edge is used by exactly two of its triangles, once in each direction (so the
+//               boundary is also consistently oriented); edges used once are holes, more than twice
+//               non-manifold, twice in the same direction misoriented;
+//   intersecting  pairs of its triangles that intersect other than along shared edges/vertices
+//               (CGAL Polygon_mesh_processing::self_intersections, exact predicates), counted
+//               only when the boundary is closed and a valid polygon mesh;
+//   volume      enclosed volume by the divergence theorem, mm^3 (positive when outward).
+// Whole complex: triangles stored twice (the same three vertices), and junction polyline edges
+// that are not triangle edges where >= 3 triangles meet.
+#pragma once
+
+#include "core/tri_surface.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace tissuemesh {
+
+struct TissueSurfaceCheck {
+  int tissue_id = 0;
+  std::string name;
+  std::size_t triangles = 0;
+  std::size_t vertices = 0;
+  std::size_t open_edges = 0;         ///< used by one triangle
+  std::size_t nonmanifold_edges = 0;  ///< used by more than two
+  std::size_t misoriented_edges = 0;  ///< used twice in the same direction
+  long long intersecting_pairs = -1;  ///< -1 = not checked (boundary not a closed polygon mesh)
+  double volume_mm3 = 0.0;
+
+  bool closed_and_oriented() const { return open_edges == 0 && nonmanifold_edges == 0 && misoriented_edges == 0; }
+};
+
+struct SurfaceCheckReport {
+  std::vector<TissueSurfaceCheck> tissues;  ///< in tissue id order (1..n)
+  std::size_t duplicate_triangles = 0;      ///< triangles whose vertex set occurs before
+  std::size_t junction_edges = 0;
+  std::size_t junction_edges_off_junction = 0;  ///< junction edges with fewer than 3 triangles
+
+  /// True when every tissue is closed, oriented and intersection free, nothing is stored twice and
+  /// every junction edge is a junction of the triangles.
+  bool valid() const;
+};
+
+SurfaceCheckReport check_surface(const TriSurface& surface);
+
+/// Indices (ascending) of the triangles in an intersecting pair of some tissue's boundary.
+std::vector<int> intersecting_triangles(const TriSurface& surface);
+
+}  // namespace tissuemesh

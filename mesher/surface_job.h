@@ -1,0 +1,31 @@
+// The surface pipeline's job (issue #5): label image + config -> multi-material surface with its
+// checks and quality (the seed paper's Tables 1 and 2 and per-tissue volume against voxel volume).
+// Volume meshing from this surface arrives with issue #6. Nothing is printed; stages go through
+// `progress`.
+#pragma once
+
+#include "core/label_image.h"
+#include "core/progress.h"
+#include "mesher/mesh_config.h"
+#include "mesher/surface_checks.h"
+#include "mesher/surface_extraction.h"
+#include "mesher/surface_quality.h"
+
+#include <map>
+#include <string>
+
+namespace tissuemesh {
+
+struct SurfaceJobResult {
+  SurfaceExtraction extraction;             ///< surface, repair and vertex counts
+  SurfaceCheckReport checks;                ///< closedness, orientation, intersections, volumes
+  SurfaceQuality quality;                   ///< Table 1 figures
+  std::map<int, double> voxel_volume_mm3;   ///< tissue id -> voxel volume of the tissue
+};
+
+/// Throws InputError for bad labels (see tissue_id_image), MeshingError when the image has no
+/// boundary. A surface failing its checks is returned (the caller reports it), not thrown.
+SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
+                                 Progress& progress);
+
+}  // namespace tissuemesh
