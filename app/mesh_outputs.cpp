@@ -64,7 +64,7 @@ void surface_into(const LabelImage& labels, const std::string& image_name, const
                        {"junctions", out.final_path("junctions.vtp").string()},
                        {"report_text", out.final_path("report.txt").string()}};
   std::cout << "\n" << text;
-  if (!result.checks.valid())
+  if (!result.extraction.checks.valid())
     throw MeshingError("the extracted surface fails its checks (see the table above); no output written");
   write_text(out.stage("report.json"), record.dump(2) + "\n");
   write_text(out.stage("report.txt"), text);

@@ -91,7 +91,8 @@ bool find_defect(const Block& block, int& mask) {
   return false;
 }
 
-/// The face-connected components of `mask` inside the block, as masks (ascending first voxel).
+/// The face-connected components of `mask` inside the block, as masks, smallest first (ties: in
+/// order of their first voxel).
 std::vector<int> split(int mask) {
   std::vector<int> parts;
   int left = mask;
@@ -106,6 +107,7 @@ std::vector<int> split(int mask) {
     parts.push_back(part);
     left &= ~part;
   }
+  std::stable_sort(parts.begin(), parts.end(), [](int a, int b) { return __builtin_popcount(a) < __builtin_popcount(b); });
   return parts;
 }
 
@@ -149,9 +151,7 @@ bool fix_defect(Block& block, int mask, LabelImage& img, std::size_t& changed) {
     }
     if (best >= 0) return set_voxels(block, 1 << best, region, img, changed), true;
     // Else the smallest piece of the region joins its highest neighbour (all neighbours are higher).
-    std::vector<int> parts = split(mask);
-    std::stable_sort(parts.begin(), parts.end(), [](int a, int b) { return __builtin_popcount(a) < __builtin_popcount(b); });
-    for (int part : parts) {
+    for (int part : split(mask)) {
       const std::int32_t to = highest_neighbour(block, part, mask);
       if (to > region && in_image(block, part)) return set_voxels(block, part, to, img, changed), true;
     }
@@ -169,9 +169,7 @@ bool fix_defect(Block& block, int mask, LabelImage& img, std::size_t& changed) {
   }
   if (best >= 0) return set_voxels(block, 1 << best, best_label, img, changed), true;
   // ... else the smallest piece of the complement (all lower-labelled) is filled with the region.
-  std::vector<int> parts = split(others);
-  std::stable_sort(parts.begin(), parts.end(), [](int a, int b) { return __builtin_popcount(a) < __builtin_popcount(b); });
-  for (int part : parts) {
+  for (int part : split(others)) {
     bool lower = in_image(block, part);
     for (int b = 0; b < 8; ++b) lower = lower && (!(part >> b & 1) || block.label[b] < region);
     if (lower) return set_voxels(block, part, region, img, changed), true;

@@ -121,9 +121,14 @@ std::string mesh_job_text(const MeshJobResult& r) {
 }
 
 namespace {
-double volume_error_percent(const TissueSurfaceCheck& t, const std::map<int, double>& voxel_volume_mm3) {
+double voxel_volume_of(const TissueSurfaceCheck& t, const std::map<int, double>& voxel_volume_mm3) {
   const auto it = voxel_volume_mm3.find(t.tissue_id);
-  return it == voxel_volume_mm3.end() || it->second <= 0.0 ? 0.0 : 100.0 * (t.volume_mm3 - it->second) / it->second;
+  return it == voxel_volume_mm3.end() ? 0.0 : it->second;
+}
+
+double volume_error_percent(const TissueSurfaceCheck& t, const std::map<int, double>& voxel_volume_mm3) {
+  const double voxel = voxel_volume_of(t, voxel_volume_mm3);
+  return voxel > 0.0 ? 100.0 * (t.volume_mm3 - voxel) / voxel : 0.0;
 }
 }  // namespace
 
@@ -143,7 +148,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                          {"p30_percent", q.p30_percent},  {"q_average", q.q_average},
                          {"q_min", q.q_min},                 {"mean_edge_mm", q.mean_edge_mm}};
   nlohmann::json tissues = nlohmann::json::array();
-  for (const auto& t : r.checks.tissues)
+  for (const auto& t : r.extraction.checks.tissues)
     tissues.push_back({{"tissue", t.name},
                        {"vertices", t.vertices},
                        {"triangles", t.triangles},
@@ -153,13 +158,13 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                        {"misoriented_edges", t.misoriented_edges},
                        {"intersecting_triangle_pairs", t.intersecting_pairs},
                        {"enclosed_volume_mm3", t.volume_mm3},
-                       {"voxel_volume_mm3", r.voxel_volume_mm3.count(t.tissue_id) ? r.voxel_volume_mm3.at(t.tissue_id) : 0.0},
+                       {"voxel_volume_mm3", voxel_volume_of(t, r.voxel_volume_mm3)},
                        {"volume_error_percent", volume_error_percent(t, r.voxel_volume_mm3)}});
   j["table2_tissues"] = tissues;
-  j["duplicate_triangles"] = r.checks.duplicate_triangles;
-  j["junction_edges"] = r.checks.junction_edges;
-  j["junction_edges_off_junction"] = r.checks.junction_edges_off_junction;
-  j["valid"] = r.checks.valid();
+  j["duplicate_triangles"] = r.extraction.checks.duplicate_triangles;
+  j["junction_edges"] = r.extraction.checks.junction_edges;
+  j["junction_edges_off_junction"] = r.extraction.checks.junction_edges_off_junction;
+  j["valid"] = r.extraction.checks.valid();
   return j;
 }
 
@@ -176,17 +181,16 @@ std::string surface_job_text(const SurfaceJobResult& r) {
   o << fmt("                             %19.3f  %15.3f", q.average_min_angle_deg, q.min_angle_deg)
     << fmt("  %7.4f  %6.4f  %6.4f", q.p30_percent, q.q_average, q.q_min) << fmt("  %14.3f\n\n", q.mean_edge_mm);
   o << "Table 2 and checks  vertices  triangles  closed+oriented  intersecting pairs  volume [mm^3]  voxel volume [mm^3]  error [%]\n";
-  for (const auto& t : r.checks.tissues) {
-    const double voxel = r.voxel_volume_mm3.count(t.tissue_id) ? r.voxel_volume_mm3.at(t.tissue_id) : 0.0;
+  for (const auto& t : r.extraction.checks.tissues) {
     char line[256];
     std::snprintf(line, sizeof line, "  %-16s  %8zu  %9zu  %15s  %18lld  %13.1f  %19.1f  %9.3f\n", t.name.c_str(),
                   t.vertices, t.triangles, t.closed_and_oriented() ? "yes" : "NO", t.intersecting_pairs, t.volume_mm3,
-                  voxel, volume_error_percent(t, r.voxel_volume_mm3));
+                  voxel_volume_of(t, r.voxel_volume_mm3), volume_error_percent(t, r.voxel_volume_mm3));
     o << line;
   }
-  o << "\ntriangles stored twice: " << r.checks.duplicate_triangles << "; junction edges: " << r.checks.junction_edges
-    << " (" << r.checks.junction_edges_off_junction << " not where >= 3 triangles meet)\n";
-  o << (r.checks.valid() ? "surface valid: every tissue closed, oriented and intersection free\n"
+  o << "\ntriangles stored twice: " << r.extraction.checks.duplicate_triangles << "; junction edges: " << r.extraction.checks.junction_edges
+    << " (" << r.extraction.checks.junction_edges_off_junction << " not where >= 3 triangles meet)\n";
+  o << (r.extraction.checks.valid() ? "surface valid: every tissue closed, oriented and intersection free\n"
                          : "WARNING: the surface fails a check above\n");
   return o.str();
 }

@@ -107,9 +107,17 @@ bool SurfaceCheckReport::valid() const {
   return duplicate_triangles == 0 && junction_edges_off_junction == 0;
 }
 
-SurfaceCheckReport check_surface(const TriSurface& s) {
+SurfaceCheckReport check_surface(const TriSurface& s, std::vector<int>* intersecting) {
   SurfaceCheckReport report;
-  for (int id = 1; id <= static_cast<int>(s.tissue_names.size()); ++id) report.tissues.push_back(tissue_check(s, id, nullptr));
+  std::vector<std::pair<int, int>> pairs;
+  for (int id = 1; id <= static_cast<int>(s.tissue_names.size()); ++id)
+    report.tissues.push_back(tissue_check(s, id, intersecting ? &pairs : nullptr));
+  if (intersecting) {
+    intersecting->clear();
+    for (const auto& [a, b] : pairs) intersecting->insert(intersecting->end(), {a, b});
+    std::sort(intersecting->begin(), intersecting->end());
+    intersecting->erase(std::unique(intersecting->begin(), intersecting->end()), intersecting->end());
+  }
 
   std::vector<std::array<int, 3>> sorted = s.triangles;
   for (auto& t : sorted) std::sort(t.begin(), t.end());
@@ -127,16 +135,6 @@ SurfaceCheckReport check_surface(const TriSurface& s) {
   report.junction_edges = edge_triangles.size();
   for (const auto& [key, n] : edge_triangles) report.junction_edges_off_junction += n < 3;
   return report;
-}
-
-std::vector<int> intersecting_triangles(const TriSurface& s) {
-  std::vector<std::pair<int, int>> pairs;
-  for (int id = 1; id <= static_cast<int>(s.tissue_names.size()); ++id) tissue_check(s, id, &pairs);
-  std::vector<int> out;
-  for (const auto& [a, b] : pairs) out.insert(out.end(), {a, b});
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
 }
 
 }  // namespace tissuemesh

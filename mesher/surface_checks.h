@@ -45,9 +45,8 @@ struct SurfaceCheckReport {
   bool valid() const;
 };
 
-SurfaceCheckReport check_surface(const TriSurface& surface);
-
-/// Indices (ascending) of the triangles in an intersecting pair of some tissue's boundary.
-std::vector<int> intersecting_triangles(const TriSurface& surface);
+/// When `intersecting` is given, it receives the indices (ascending, unique) of the triangles in an
+/// intersecting pair of some tissue's boundary.
+SurfaceCheckReport check_surface(const TriSurface& surface, std::vector<int>* intersecting = nullptr);
 
 }  // namespace tissuemesh

@@ -261,10 +261,12 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
 
   // Relaxation can fold the surface where a thin layer bends sharply. Vertices of intersecting
   // triangles go halfway back to their voxel corner, round after round (the unrelaxed voxel
-  // boundary of well-composed regions has no intersections).
-  for (int round = 0; round < kUnfoldRounds; ++round) {
-    const std::vector<int> bad = intersecting_triangles(s);
-    if (bad.empty()) break;
+  // boundary of well-composed regions has no intersections). The loop ends with a check of the
+  // final points, which is the one returned.
+  for (int round = 0;; ++round) {
+    std::vector<int> bad;
+    out.checks = check_surface(s, &bad);
+    if (bad.empty() || round == kUnfoldRounds) break;
     std::vector<int> moved;
     for (int t : bad)
       for (int v : s.triangles[static_cast<std::size_t>(t)]) moved.push_back(v);

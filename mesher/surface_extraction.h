@@ -27,6 +27,7 @@
 #include "core/progress.h"
 #include "core/tri_surface.h"
 #include "mesher/label_repair.h"
+#include "mesher/surface_checks.h"
 #include "mesher/surface_params.h"
 
 #include <string>
@@ -40,6 +41,7 @@ struct SurfaceExtraction {
   std::size_t curve_vertices = 0;   ///< vertices inside junction polylines
   std::size_t corner_vertices = 0;  ///< fixed vertices: polyline ends, where curves meet
   std::size_t unfolded_vertices = 0;  ///< vertex moves back towards the voxel corner (step 6)
+  SurfaceCheckReport checks;          ///< mesher/surface_checks.h of the returned surface
 };
 
 /// `ids`: tissue ids (0 = outside, 1..names.size()), e.g. TissueTable::to_tissue_ids. Throws

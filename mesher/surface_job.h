@@ -7,7 +7,6 @@
 #include "core/label_image.h"
 #include "core/progress.h"
 #include "mesher/mesh_config.h"
-#include "mesher/surface_checks.h"
 #include "mesher/surface_extraction.h"
 #include "mesher/surface_quality.h"
 
@@ -17,8 +16,7 @@
 namespace tissuemesh {
 
 struct SurfaceJobResult {
-  SurfaceExtraction extraction;             ///< surface, repair and vertex counts
-  SurfaceCheckReport checks;                ///< closedness, orientation, intersections, volumes
+  SurfaceExtraction extraction;             ///< surface, repair, vertex counts and checks
   SurfaceQuality quality;                   ///< Table 1 figures
   std::map<int, double> voxel_volume_mm3;   ///< tissue id -> voxel volume of the tissue
 };
