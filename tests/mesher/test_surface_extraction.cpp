@@ -87,7 +87,7 @@ TEST(SurfaceExtraction, NestedSpheresAreClosedOrientedAndKeepTheirVolume) {
     EXPECT_EQ(t.intersecting_pairs, 0) << t.name;
     // Outward orientation gives a positive enclosed volume close to the voxel volume (the surface
     // stays in the half-voxel band and Taubin relaxation does not shrink).
-    EXPECT_NEAR(t.volume_mm3, voxel_volume(img, t.tissue_id), kSmallImageVolumeRel * voxel_volume(img, t.tissue_id))
+    EXPECT_NEAR(t.volume_mm3, voxel_volume(img, t.tissue_id), kExtractedSurfaceVolumeRel * voxel_volume(img, t.tissue_id))
         << t.name;
   }
   // Only the two nested interfaces exist, so no curve where three regions meet.
@@ -133,7 +133,7 @@ TEST(SurfaceExtraction, TripleJunctionStaysOnItsLineAndFlatInterfacesStayFlat) {
   }
   EXPECT_EQ(n12, 2u * 10u * 10u);  // 10 x 10 voxel faces, two triangles each
   for (const auto& t : checks.tissues)
-    EXPECT_NEAR(t.volume_mm3, voxel_volume(img, t.tissue_id), kSmallImageVolumeRel * voxel_volume(img, t.tissue_id));
+    EXPECT_NEAR(t.volume_mm3, voxel_volume(img, t.tissue_id), kExtractedSurfaceVolumeRel * voxel_volume(img, t.tissue_id));
 }
 
 TEST(SurfaceExtraction, IsDeterministic) {
