@@ -120,6 +120,7 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
     const int base = slot_start_[start];
     if (with_tangent) buffer_.resize(slot_start_[end] - base);
     forces_.resize(static_cast<std::size_t>(end - start) * nf);
+    energies_.resize(static_cast<std::size_t>(end - start));
     int failed_element = std::numeric_limits<int>::max();
     ElementResponse failure;
 #pragma omp parallel num_threads(threads_)
@@ -139,6 +140,7 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
           continue;
         }
         std::copy(r.force.data(), r.force.data() + nf, forces_.data() + static_cast<std::size_t>(e - start) * nf);
+        energies_[e - start] = r.energy;
         if (!with_tangent) continue;
         // Lower triangle of the reduced element matrix T^T K T (T: block-diagonal node bases,
         // identity for free nodes), in the slot order.
@@ -171,6 +173,7 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
     // Serial scatter in element order: the same summation order for any thread count.
     for (int e = start; e < end; ++e) {
       const double* f = forces_.data() + static_cast<std::size_t>(e - start) * nf;
+      out.energy += energies_[e - start];
       for (int a = 0; a < n_; ++a)
         for (int i = 0; i < 3; ++i) out.f_int[3 * elements_[e][a] + i] += f[3 * a + i];
       if (!with_tangent) continue;

@@ -39,6 +39,7 @@ class ReducedAssembly {
     bool ok = true;
     std::string note;        ///< failure reason ("inverted element 12 (min J -0.1)")
     Eigen::VectorXd f_int;   ///< 3 per node, global
+    double energy = 0.0;     ///< stored energy of the whole mesh (summed in element order)
   };
 
   /// f_int at the global displacement u (3 per node) and, when `with_tangent`, the tangent into
@@ -62,6 +63,7 @@ class ReducedAssembly {
   std::vector<int> slots_;       ///< lower-triangle pairs (i >= j) of each element's reduced dofs
   std::vector<double> buffer_;   ///< a chunk's reduced element matrices (slot layout)
   std::vector<double> forces_;   ///< a chunk's element forces (3 n per element)
+  std::vector<double> energies_; ///< a chunk's element energies
 };
 
 }  // namespace tissuemesh

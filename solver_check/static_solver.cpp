@@ -143,6 +143,7 @@ bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess,
   }
   Eigen::VectorXd R = load_reduced - dofs.reduce(current.f_int);
   double rnorm = R.norm();
+  double potential = current.energy - load.dot(trial.u);  // total potential energy at trial.u
   double ref = residual_scale(load, current.f_int);
   record.residual_norms.push_back(rnorm / ref);
   if (!std::isfinite(rnorm)) {
@@ -164,30 +165,39 @@ bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess,
       record.note = "linear solve failed (singular or non-finite tangent)";
       return false;
     }
-    // Backtracking line search on ||R||: the full step is evaluated with the tangent (it is
-    // almost always taken); shorter ones with the force only, the tangent follows for the one kept.
-    double best_norm = INFINITY, best_alpha = 0.0;
+    // Backtracking line search: the longest step (1, 1/2, ... 1/16) that lowers either the
+    // potential energy Pi = W(u) - load . u or ||R||. Far from equilibrium a full Newton step often
+    // lowers the energy while ||R|| grows (stiffening in compression), and refusing it costs
+    // iterations; near equilibrium ||R|| decides (the energy change is then at round-off level).
+    // The full step is evaluated with the tangent (it is almost always taken); shorter ones with
+    // the force only, the tangent follows for the one kept. When no step lowers either, the one
+    // with the smallest ||R|| is kept.
+    double best_norm = INFINITY, best_alpha = 0.0, best_potential = 0.0;
     ReducedAssembly::Result best;
     Eigen::VectorXd best_R, best_q;
     std::string inverted_note;
     for (double alpha = 1.0; alpha >= 1.0 / 16.0; alpha *= 0.5) {
       Eigen::VectorXd q = trial.q + alpha * dq;
-      ReducedAssembly::Result a = ctx.assemble(dofs.expand(q, lambda), alpha == 1.0);
+      const Eigen::VectorXd ua = dofs.expand(q, lambda);
+      ReducedAssembly::Result a = ctx.assemble(ua, alpha == 1.0);
       if (!a.ok) {
         inverted_note = a.note;
         continue;
       }
       Eigen::VectorXd Ra = load_reduced - dofs.reduce(a.f_int);
       const double na = Ra.norm();
-      if (!std::isfinite(na)) continue;
-      if (na < best_norm) {
+      const double pa = a.energy - load.dot(ua);
+      if (!std::isfinite(na) || !std::isfinite(pa)) continue;
+      const bool descends = na < rnorm || pa < potential;
+      if (na < best_norm || descends) {
         best_norm = na;
         best_alpha = alpha;
+        best_potential = pa;
         best = std::move(a);
         best_R = std::move(Ra);
         best_q = std::move(q);
       }
-      if (na < rnorm) break;
+      if (descends) break;
     }
     if (best_alpha == 0.0) {
       record.note = inverted_note.empty() ? "non-finite residual" : inverted_note;
@@ -197,6 +207,7 @@ bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess,
     trial.u = dofs.expand(trial.q, lambda);
     R = std::move(best_R);
     rnorm = best_norm;
+    potential = best_potential;
     ref = residual_scale(load, best.f_int);
     record.step_lengths.push_back(best_alpha);
     record.residual_norms.push_back(rnorm / ref);

@@ -30,9 +30,10 @@
 //   residual of 1e-4 (solver_check/linear_solver.h): conjugate gradients preconditioned by the
 //   last factorisation of the tangent, and a new factorisation (CHOLMOD's supernodal Cholesky
 //   when the build has it, else Eigen::SimplicialLDLT; symbolic analysis done once) only when CG
-//   does not get there in 25 iterations. Backtracking line search on the residual norm: step lengths
-//   1, 1/2, ... 1/16, the first that lowers ||R|| (and keeps every element un-inverted) is taken;
-//   when none lowers it the un-inverted trial with the smallest ||R|| is taken.
+//   does not get there in 25 iterations. Backtracking line search: step lengths 1, 1/2, ... 1/16,
+//   the first that keeps every element un-inverted and lowers either the potential energy
+//   W(u) - load . u or ||R|| is taken; when none does, the un-inverted trial with the smallest
+//   ||R|| is taken.
 // - each increment starts from a secant prediction (the last increment's change, scaled), or
 //   from the last accepted state when that prediction inverts an element or after a cut-back.
 // - convergence of an increment: ||R_free|| <= residual_tolerance * max(||lambda f_ext||,
