@@ -54,8 +54,8 @@ void surface_into(const LabelImage& labels, const std::string& image_name, const
   const SurfaceJobResult result = run_surface_job(labels, image_name, config, progress);
   {
     auto stage = progress.stage("write surface.vtp, junctions.vtp");
-    write_surface_vtp(result.extraction.surface, out.stage("surface.vtp").string());
-    write_junctions_vtp(result.extraction.surface, out.stage("junctions.vtp").string());
+    write_surface_vtp(result.surface(), out.stage("surface.vtp").string());
+    write_junctions_vtp(result.surface(), out.stage("junctions.vtp").string());
   }
   const std::string text = surface_job_text(result);
   nlohmann::json record = mesh_record(labels, config, inputs, cmd, progress);
@@ -64,8 +64,9 @@ void surface_into(const LabelImage& labels, const std::string& image_name, const
                        {"junctions", out.final_path("junctions.vtp").string()},
                        {"report_text", out.final_path("report.txt").string()}};
   std::cout << "\n" << text;
-  if (!result.extraction.checks.valid())
-    throw MeshingError("the extracted surface fails its checks (see the table above); no output written");
+  if (!result.checks.valid())
+    throw MeshingError(std::string(result.remesh ? "the remeshed" : "the extracted") +
+                       " surface fails its checks (see the table above); no output written");
   write_text(out.stage("report.json"), record.dump(2) + "\n");
   write_text(out.stage("report.txt"), text);
 }

@@ -23,6 +23,12 @@ MeshConfig MeshConfig::from_top(YamlMap& top) {
   c.direct = DirectMeshParams::from_yaml(direct);
   YamlMap surface = top.map("surface");
   c.surface = SurfaceParams::from_yaml(surface);
+  YamlMap approach = top.map("approach");
+  c.approach = ApproachParams::from_yaml(approach);
+  if (c.approach.enabled && (c.pipeline != "surface" || !c.surface.remesh()))
+    throw InputError(top.where("approach") +
+                     ": approach grading needs pipeline: surface with surface.target_vertices or surface.target_edge_mm "
+                     "(the direct pipeline grades with direct.refine_tissue)");
   YamlMap phantom = top.map("phantom");
   c.phantom = parse_phantom_params(phantom);
   phantom.finish();
@@ -58,6 +64,8 @@ void MeshConfig::emit_keys(YAML::Emitter& out) const {
   direct.to_yaml(out);
   out << YAML::Key << "surface" << YAML::Value;
   surface.to_yaml(out);
+  out << YAML::Key << "approach" << YAML::Value;
+  approach.to_yaml(out);
   out << YAML::Key << "phantom" << YAML::Value;
   phantom_params_to_yaml(phantom, out);
 }

@@ -6,6 +6,7 @@
 //   ignore_labels: [0]
 //   direct: {...}               # see mesher/direct_mesh_params.h
 //   surface: {...}              # see mesher/surface_params.h
+//   approach: {...}             # see mesher/approach_params.h (pipeline: surface)
 //   phantom: {...}              # optional: the phantom `tissuemesh demo` generates (phantom.h)
 //
 // Unknown keys anywhere are errors naming the file and key path. `to_yaml()` prints the effective
@@ -15,6 +16,7 @@
 #include "core/tissue_table.h"
 #include "mesher/direct_mesh_params.h"
 #include "mesher/phantom.h"
+#include "mesher/approach_params.h"
 #include "mesher/surface_params.h"
 
 #include <string>
@@ -27,6 +29,7 @@ struct MeshConfig {
   TissueTable tissues;
   DirectMeshParams direct;
   SurfaceParams surface;
+  ApproachParams approach;
   PhantomParams phantom;
 
   /// Loads and validates a config file; throws InputError naming the file and key.

@@ -132,23 +132,64 @@ double volume_error_percent(const TissueSurfaceCheck& t, const std::map<int, dou
 }
 }  // namespace
 
+namespace {
+
+nlohmann::json table1_json(const SurfaceQuality& q) {
+  return {{"average_min_angle_deg", q.average_min_angle_deg}, {"min_angle_deg", q.min_angle_deg},
+          {"p30_percent", q.p30_percent},  {"q_average", q.q_average},
+          {"q_min", q.q_min},                 {"mean_edge_mm", q.mean_edge_mm}};
+}
+
+std::string table1_row(const char* name, const SurfaceQuality& q) {
+  char label[40];
+  std::snprintf(label, sizeof label, "  %-26s", name);
+  return label + fmt("  %19.3f  %15.3f", q.average_min_angle_deg, q.min_angle_deg) +
+         fmt("  %7.4f  %6.4f  %6.4f", q.p30_percent, q.q_average, q.q_min) + fmt("  %14.3f\n", q.mean_edge_mm);
+}
+
+}  // namespace
+
 nlohmann::json surface_job_json(const SurfaceJobResult& r) {
-  const TriSurface& s = r.extraction.surface;
-  const SurfaceQuality& q = r.quality;
+  const TriSurface& s = r.surface();
+  const TriSurface& e = r.extraction.surface;
   nlohmann::json j;
   j["vertices"] = s.points.size();
   j["triangles"] = s.triangles.size();
   j["junction_polylines"] = s.junctions.size();
-  j["junction_curve_vertices"] = r.extraction.curve_vertices;
-  j["junction_corner_vertices"] = r.extraction.corner_vertices;
-  j["unfolded_vertex_moves"] = r.extraction.unfolded_vertices;
-  j["voxel_repair"] = {{"relabelled_voxels", r.extraction.repair.relabelled_voxels},
-                       {"passes", r.extraction.repair.passes}};
-  j["table1_quality"] = {{"average_min_angle_deg", q.average_min_angle_deg}, {"min_angle_deg", q.min_angle_deg},
-                         {"p30_percent", q.p30_percent},  {"q_average", q.q_average},
-                         {"q_min", q.q_min},                 {"mean_edge_mm", q.mean_edge_mm}};
+  j["extracted"] = {{"vertices", e.points.size()},
+                    {"triangles", e.triangles.size()},
+                    {"junction_curve_vertices", r.extraction.curve_vertices},
+                    {"junction_corner_vertices", r.extraction.corner_vertices},
+                    {"unfolded_vertex_moves", r.extraction.unfolded_vertices},
+                    {"voxel_repair",
+                     {{"relabelled_voxels", r.extraction.repair.relabelled_voxels},
+                      {"passes", r.extraction.repair.passes}}},
+                    {"table1_quality", table1_json(r.extracted_quality)}};
+  if (r.remesh) {
+    j["remesh"] = {{"edge_length_mm", r.remesh->edge_length_mm},
+                   {"splits", r.remesh->splits},
+                   {"collapses", r.remesh->collapses},
+                   {"flips", r.remesh->flips}};
+    if (r.hausdorff)
+      j["remesh"]["hausdorff_to_extracted_mm"] = {{"symmetric", r.hausdorff->symmetric_mm()},
+                                                   {"remeshed_to_extracted", r.hausdorff->a_to_b_mm},
+                                                   {"extracted_to_remeshed", r.hausdorff->b_to_a_mm}};
+  }
+  if (r.approach) {
+    const Eigen::Vector3d &e = r.approach->entry(), &c = r.approach->target_centroid();
+    j["approach"] = {{"entry_mm", {e.x(), e.y(), e.z()}},
+                     {"target_centroid_mm", {c.x(), c.y(), c.z()}},
+                     {"target_radius_mm", r.approach->target_radius_mm()}};
+    if (r.grading)
+      j["approach"]["measured"] = {{"inside_mean_edge_mm", r.grading->inside_mean_edge_mm},
+                                   {"outside_mean_edge_mm", r.grading->outside_mean_edge_mm},
+                                   {"inside_edges", r.grading->inside_edges},
+                                   {"outside_edges", r.grading->outside_edges},
+                                   {"inside_over_outside", r.grading->ratio()}};
+  }
+  j["table1_quality"] = table1_json(r.quality);
   nlohmann::json tissues = nlohmann::json::array();
-  for (const auto& t : r.extraction.checks.tissues)
+  for (const auto& t : r.checks.tissues)
     tissues.push_back({{"tissue", t.name},
                        {"vertices", t.vertices},
                        {"triangles", t.triangles},
@@ -161,36 +202,54 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                        {"voxel_volume_mm3", voxel_volume_of(t, r.voxel_volume_mm3)},
                        {"volume_error_percent", volume_error_percent(t, r.voxel_volume_mm3)}});
   j["table2_tissues"] = tissues;
-  j["duplicate_triangles"] = r.extraction.checks.duplicate_triangles;
-  j["junction_edges"] = r.extraction.checks.junction_edges;
-  j["junction_edges_off_junction"] = r.extraction.checks.junction_edges_off_junction;
-  j["valid"] = r.extraction.checks.valid();
+  j["duplicate_triangles"] = r.checks.duplicate_triangles;
+  j["junction_edges"] = r.checks.junction_edges;
+  j["junction_edges_off_junction"] = r.checks.junction_edges_off_junction;
+  j["valid"] = r.checks.valid();
   return j;
 }
 
 std::string surface_job_text(const SurfaceJobResult& r) {
-  const TriSurface& s = r.extraction.surface;
-  const SurfaceQuality& q = r.quality;
+  const TriSurface& e = r.extraction.surface;
+  const TriSurface& s = r.surface();
   std::ostringstream o;
-  o << "surface: " << s.points.size() << " vertices, " << s.triangles.size() << " triangles (each interface once), "
-    << s.junctions.size() << " junction polylines (" << r.extraction.curve_vertices << " curve vertices, "
-    << r.extraction.corner_vertices << " corners); " << r.extraction.repair.relabelled_voxels
-    << " voxels relabelled to remove non-manifold configurations, " << r.extraction.unfolded_vertices
-    << " vertex moves to undo folds\n\n";
-  o << "Table 1 (triangle quality)  avg min angle [deg]  min angle [deg]  P30 [%]   Q_av    Q_min   mean edge [mm]\n";
-  o << fmt("                             %19.3f  %15.3f", q.average_min_angle_deg, q.min_angle_deg)
-    << fmt("  %7.4f  %6.4f  %6.4f", q.p30_percent, q.q_average, q.q_min) << fmt("  %14.3f\n\n", q.mean_edge_mm);
+  o << "extracted surface: " << e.points.size() << " vertices, " << e.triangles.size()
+    << " triangles (each interface once), " << e.junctions.size() << " junction polylines ("
+    << r.extraction.curve_vertices << " curve vertices, " << r.extraction.corner_vertices << " corners); "
+    << r.extraction.repair.relabelled_voxels << " voxels relabelled to remove non-manifold configurations, "
+    << r.extraction.unfolded_vertices << " vertex moves to undo folds\n";
+  if (r.remesh) {
+    o << "remeshed surface: " << s.points.size() << " vertices, " << s.triangles.size() << " triangles, "
+      << s.junctions.size() << " junction polylines; edge length " << fmt("%.3f", r.remesh->edge_length_mm)
+      << " mm where the size field is 1 (" << r.remesh->splits << " splits, " << r.remesh->collapses
+      << " collapses, " << r.remesh->flips << " flips)\n";
+    if (r.hausdorff)
+      o << "Hausdorff distance to the extracted surface: " << fmt("%.3f", r.hausdorff->symmetric_mm())
+        << " mm (remeshed -> extracted " << fmt("%.3f", r.hausdorff->a_to_b_mm) << " mm, extracted -> remeshed "
+        << fmt("%.3f", r.hausdorff->b_to_a_mm) << " mm)\n";
+  }
+  if (r.approach && r.grading) {
+    const Eigen::Vector3d &e = r.approach->entry();
+    o << "approach: entry " << fmt("(%.2f, %.2f, %.2f) mm", e.x(), e.y(), e.z()) << ", mean edge "
+      << fmt("%.3f mm inside the corridor and target (%.0f edges), ", r.grading->inside_mean_edge_mm,
+             static_cast<double>(r.grading->inside_edges))
+      << fmt("%.3f mm beyond the falloff (%.0f edges): ratio %.3f\n", r.grading->outside_mean_edge_mm,
+             static_cast<double>(r.grading->outside_edges), r.grading->ratio());
+  }
+  o << "\nTable 1 (triangle quality)    avg min angle [deg]  min angle [deg]  P30 [%]   Q_av    Q_min   mean edge [mm]\n";
+  if (r.remesh) o << table1_row("extracted", r.extracted_quality);
+  o << table1_row(r.remesh ? "remeshed" : "extracted", r.quality) << "\n";
   o << "Table 2 and checks  vertices  triangles  closed+oriented  intersecting pairs  volume [mm^3]  voxel volume [mm^3]  error [%]\n";
-  for (const auto& t : r.extraction.checks.tissues) {
+  for (const auto& t : r.checks.tissues) {
     char line[256];
     std::snprintf(line, sizeof line, "  %-16s  %8zu  %9zu  %15s  %18lld  %13.1f  %19.1f  %9.3f\n", t.name.c_str(),
                   t.vertices, t.triangles, t.closed_and_oriented() ? "yes" : "NO", t.intersecting_pairs, t.volume_mm3,
                   voxel_volume_of(t, r.voxel_volume_mm3), volume_error_percent(t, r.voxel_volume_mm3));
     o << line;
   }
-  o << "\ntriangles stored twice: " << r.extraction.checks.duplicate_triangles << "; junction edges: " << r.extraction.checks.junction_edges
-    << " (" << r.extraction.checks.junction_edges_off_junction << " not where >= 3 triangles meet)\n";
-  o << (r.extraction.checks.valid() ? "surface valid: every tissue closed, oriented and intersection free\n"
+  o << "\ntriangles stored twice: " << r.checks.duplicate_triangles << "; junction edges: " << r.checks.junction_edges
+    << " (" << r.checks.junction_edges_off_junction << " not where >= 3 triangles meet)\n";
+  o << (r.checks.valid() ? "surface valid: every tissue closed, oriented and intersection free\n"
                          : "WARNING: the surface fails a check above\n");
   return o.str();
 }

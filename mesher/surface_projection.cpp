@@ -1,0 +1,96 @@
+#include "mesher/surface_projection.h"
+
+#include "core/errors.h"
+
+#include <CGAL/AABB_segment_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <map>
+
+namespace tissuemesh {
+namespace {
+
+using K = CGAL::Simple_cartesian<double>;
+using Point = K::Point_3;
+using Triangle = K::Triangle_3;
+using Segment = K::Segment_3;
+using TriangleTree =
+    CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, std::vector<Triangle>::const_iterator>>>;
+using SegmentTree =
+    CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitive<K, std::vector<Segment>::const_iterator>>>;
+
+Point point(const Eigen::Vector3d& p) { return Point(p.x(), p.y(), p.z()); }
+Eigen::Vector3d vector(const Point& p) { return Eigen::Vector3d(p.x(), p.y(), p.z()); }
+
+}  // namespace
+
+PatchNumbering number_patches(const TriSurface& surface) {
+  PatchNumbering n;
+  std::map<std::array<int, 2>, int> index;
+  n.patch_of_triangle.reserve(surface.triangles.size());
+  for (const std::array<int, 2>& pq : surface.labels) {
+    auto it = index.emplace(pq, static_cast<int>(n.pair_of_patch.size())).first;
+    if (it->second == static_cast<int>(n.pair_of_patch.size())) n.pair_of_patch.push_back(pq);
+    n.patch_of_triangle.push_back(it->second);
+  }
+  return n;
+}
+
+struct SurfaceProjection::Trees {
+  std::vector<std::vector<Triangle>> patch_triangles;
+  std::vector<std::vector<Segment>> curve_segments;
+  std::vector<Triangle> all_triangles;
+  std::vector<std::unique_ptr<TriangleTree>> patch;
+  std::vector<std::unique_ptr<SegmentTree>> curve;
+  std::unique_ptr<TriangleTree> all;
+};
+
+SurfaceProjection::SurfaceProjection(const TriSurface& reference)
+    : patches_(number_patches(reference)), trees_(std::make_unique<Trees>()) {
+  Trees& t = *trees_;
+  t.patch_triangles.resize(patches_.pair_of_patch.size());
+  t.all_triangles.reserve(reference.triangles.size());
+  for (std::size_t i = 0; i < reference.triangles.size(); ++i) {
+    const std::array<int, 3>& v = reference.triangles[i];
+    const Triangle tri(point(reference.points[v[0]]), point(reference.points[v[1]]), point(reference.points[v[2]]));
+    t.patch_triangles[patches_.patch_of_triangle[i]].push_back(tri);
+    t.all_triangles.push_back(tri);
+  }
+  for (const std::vector<Triangle>& tris : t.patch_triangles) {
+    t.patch.push_back(std::make_unique<TriangleTree>(tris.begin(), tris.end()));
+    t.patch.back()->accelerate_distance_queries();
+  }
+  t.all = std::make_unique<TriangleTree>(t.all_triangles.begin(), t.all_triangles.end());
+  t.all->accelerate_distance_queries();
+  t.curve_segments.resize(reference.junctions.size());
+  for (std::size_t c = 0; c < reference.junctions.size(); ++c) {
+    const std::vector<int>& line = reference.junctions[c];
+    for (std::size_t i = 0; i + 1 < line.size(); ++i)
+      t.curve_segments[c].emplace_back(point(reference.points[line[i]]), point(reference.points[line[i + 1]]));
+    t.curve.push_back(std::make_unique<SegmentTree>(t.curve_segments[c].begin(), t.curve_segments[c].end()));
+    t.curve.back()->accelerate_distance_queries();
+  }
+}
+
+SurfaceProjection::~SurfaceProjection() = default;
+
+Eigen::Vector3d SurfaceProjection::onto_patch(int patch, const Eigen::Vector3d& p, Eigen::Vector3d* normal) const {
+  if (!normal) return vector(trees_->patch.at(patch)->closest_point(point(p)));
+  const auto hit = trees_->patch.at(patch)->closest_point_and_primitive(point(p));
+  const Triangle& t = *hit.second;
+  *normal = (vector(t[1]) - vector(t[0])).cross(vector(t[2]) - vector(t[0])).normalized();
+  return vector(hit.first);
+}
+
+Eigen::Vector3d SurfaceProjection::onto_curve(int curve, const Eigen::Vector3d& p) const {
+  return vector(trees_->curve.at(curve)->closest_point(point(p)));
+}
+
+double SurfaceProjection::distance(const Eigen::Vector3d& p) const {
+  return std::sqrt(trees_->all->squared_distance(point(p)));
+}
+
+}  // namespace tissuemesh

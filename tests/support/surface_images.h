@@ -1,0 +1,56 @@
+// Small generated label images and their extraction, shared by the surface-pipeline tests
+// (issue #5): nested spheres on anisotropic voxels and three touching boxes with a triple junction.
+#pragma once
+
+#include "core/label_image.h"
+#include "core/progress.h"
+#include "mesher/surface_extraction.h"
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tissuemesh::test {
+
+inline LabelImage make_image(std::array<int, 3> dims, Eigen::Vector3d spacing,
+                      const std::function<int(int, int, int)>& label_at) {
+  LabelImage img;
+  img.dims = dims;
+  img.spacing = spacing;
+  img.origin = {-3.0, 2.0, 7.0};
+  img.labels.resize(img.voxel_count());
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i) img.labels[img.index(i, j, k)] = label_at(i, j, k);
+  return img;
+}
+
+/// Outer ball (id 1, radius 9 mm) with an inner ball (id 2, radius 5 mm) on anisotropic voxels.
+inline LabelImage nested_spheres() {
+  const Eigen::Vector3d spacing(1.0, 1.0, 1.5);
+  return make_image({26, 26, 18}, spacing, [&](int i, int j, int k) {
+    const Eigen::Vector3d p((i - 12.5) * spacing[0], (j - 12.5) * spacing[1], (k - 8.5) * spacing[2]);
+    return p.norm() < 5.0 ? 2 : p.norm() < 9.0 ? 1 : 0;
+  });
+}
+
+/// Boxes 1 and 2 side by side (x < 15 | x >= 15), box 3 on top of both (y >= 15): a triple
+/// junction 1|2|3 along the straight line x = 14.5, y = 14.5 (voxel-index units, spacing 1).
+inline LabelImage three_boxes() {
+  return make_image({30, 30, 20}, {1.0, 1.0, 1.0}, [](int i, int j, int k) {
+    if (i < 5 || i >= 25 || j < 5 || j >= 25 || k < 5 || k >= 15) return 0;
+    return j >= 15 ? 3 : i < 15 ? 1 : 2;
+  });
+}
+
+inline SurfaceExtraction extract(const LabelImage& img, int n_tissues, int iterations = 10) {
+  std::vector<std::string> names;
+  for (int i = 1; i <= n_tissues; ++i) names.push_back("t" + std::to_string(i));
+  Progress progress;
+  SurfaceParams params;
+  params.relaxation_iterations = iterations;
+  return extract_surface(img, names, params, progress);
+}
+
+}  // namespace tissuemesh::test
