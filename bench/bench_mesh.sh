@@ -3,25 +3,15 @@
 # peak memory over N runs (default 5). Usage: bench/bench_mesh.sh [runs] (after scripts/build.sh).
 # Prints a Markdown table for bench/RESULTS.md. Needs python3 (reads report.json).
 set -euo pipefail
-cd "$(dirname "$0")/.."
 RUNS=${1:-5}
-EXE=./build/app/tissuemesh
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-$EXE phantom --out "$WORK/phantom.nii.gz" > /dev/null
-
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+source "$(dirname "$0")/common.sh"
 
 echo "| config | tets | nodes | wall time median [s] (min-max) | peak memory median [MiB] | min dihedral [deg] | tets < 10 deg |"
 echo "|---|---|---|---|---|---|---|"
 for cfg in bench/configs/coarse-3tissues.yaml configs/phantom.yaml bench/configs/fine.yaml; do
   : > "$WORK/times"; : > "$WORK/mem"
   for i in $(seq "$RUNS"); do
-    rm -rf "$WORK/out"
-    start=$(date +%s.%N)
-    $EXE mesh "$WORK/phantom.nii.gz" -c "$cfg" -o "$WORK/out" > /dev/null
-    end=$(date +%s.%N)
-    awk -v a="$start" -v b="$end" "BEGIN {print b - a}" >> "$WORK/times"
+    mesh_timed "$cfg" "$WORK/times"
     python3 -c "import json,sys; print(json.load(open('$WORK/out/report.json'))['peak_memory_mib'])" >> "$WORK/mem"
   done
   read -r tets nodes mind below < <(python3 -c "
