@@ -26,7 +26,7 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
   }
   r.remesh = remesh_surface(r.extraction.surface, on_extracted, options, progress);
   {
-    auto stage = progress.stage("remeshed surface checks");
+    auto stage = progress.stage("remeshed surface quality");
     r.checks = r.remesh->checks;
     r.quality = surface_quality(r.remesh->surface);
     if (r.approach) r.grading = measure_grading(r.remesh->surface, *r.approach);

@@ -1,5 +1,7 @@
 #include "mesher/surface_quality.h"
 
+#include "mesher/triangle_geometry.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -17,18 +19,11 @@ SurfaceQuality surface_quality(const TriSurface& s) {
   for (const auto& t : s.triangles) {
     const Eigen::Vector3d &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
     const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();  // opposite a, b, c
-    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const double area = area_vector(a, b, c).norm();
     const double p = 0.5 * (la + lb + lc), h = std::max({la, lb, lc});
-    double min_angle = 0.0;
-    if (area > 0.0) {
-      // Angle opposite each edge from atan2(2A, adjacent dot product): accurate for all shapes.
-      const double angles[3] = {std::atan2(2.0 * area, (b - a).dot(c - a)), std::atan2(2.0 * area, (a - b).dot(c - b)),
-                                std::atan2(2.0 * area, (a - c).dot(b - c))};
-      min_angle = std::min({angles[0], angles[1], angles[2]}) * kDeg;
-      for (double angle : angles) below30 += angle * kDeg < 30.0;
-    } else {
-      below30 += 3;
-    }
+    const std::array<double, 3> angles = triangle_angles(a, b, c);  // zero for a zero-area triangle
+    const double min_angle = std::min({angles[0], angles[1], angles[2]}) * kDeg;
+    for (double angle : angles) below30 += angle * kDeg < 30.0;
     const double quality = p > 0.0 && h > 0.0 ? 6.0 / std::sqrt(3.0) * area / (p * h) : 0.0;
     sum_min += min_angle;
     sum_q += quality;

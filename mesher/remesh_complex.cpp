@@ -1,0 +1,543 @@
+#include "mesher/remesh_complex.h"
+
+#include "core/errors.h"
+#include "mesher/triangle_geometry.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tissuemesh {
+namespace {
+
+using Eigen::Vector3d;
+
+/// Botsch & Kobbelt's thresholds: splitting above 4/3 h and collapsing below 4/5 h leaves edges
+/// whose lengths average about h and never oscillate between a split and a collapse.
+constexpr double kSplitAbove = 4.0 / 3.0;
+constexpr double kCollapseBelow = 4.0 / 5.0;
+/// A collapse, flip or relaxation move is refused when a triangle's normal turns by more than
+/// this (cos 60 deg): it would fold the surface or leave the reference shape's tangent plane.
+constexpr double kMinNormalTurnCos = 0.5;
+/// Flips keep the surface shape: the new pair of triangles must be at least this flat (cos 25 deg),
+/// or no less flat than the old pair.
+constexpr double kFlipFlatCos = 0.906;
+/// The approximation bound is at least this fraction of the edge length L.
+constexpr double kDeviationPerEdge = 0.25;
+
+/// Size factor of a refinement ball around a self-intersection, relative to the size the earlier
+/// rounds left there.
+constexpr double kRefineFactor = 0.5;
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
+
+}  // namespace
+
+RemeshComplex::RemeshComplex(const TriSurface& in, const SurfaceProjection& projection, const RemeshOptions& options)
+    : proj_(projection), size_(options.relative_size), max_deviation_(options.max_deviation_mm) {
+  x_ = in.points;
+  reference_ = in.points;
+  represents_.resize(x_.size());
+  for (int v = 0; v < static_cast<int>(x_.size()); ++v) represents_[v] = {v};
+  tri_ = in.triangles;
+  patch_ = projection.patches().patch_of_triangle;
+  tri_alive_.assign(tri_.size(), 1);
+  vt_.resize(x_.size());
+  for (int t = 0; t < static_cast<int>(tri_.size()); ++t)
+    for (int v : tri_[t]) vt_[v].push_back(t);
+  curve_edges_.assign(in.junctions.size(), 0);
+  curve_closed_.assign(in.junctions.size(), 0);
+  std::vector<int> degree(x_.size(), 0), end(x_.size(), 0), curve_of(x_.size(), -1), curves_at(x_.size(), 0);
+  for (int c = 0; c < static_cast<int>(in.junctions.size()); ++c) {
+    const std::vector<int>& line = in.junctions[c];
+    curve_closed_[c] = line.size() > 2 && line.front() == line.back();
+    if (!curve_closed_[c]) {
+      ++end[line.front()];
+      ++end[line.back()];
+    }
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      curve_edge_[edge_key(line[i], line[i + 1])] = c;
+      ++curve_edges_[c];
+      for (int v : {line[i], line[i + 1]}) {
+        ++degree[v];
+        if (curve_of[v] != c) ++curves_at[v];
+        curve_of[v] = c;
+      }
+    }
+  }
+  kind_.resize(x_.size());
+  owner_.resize(x_.size());
+  for (std::size_t v = 0; v < x_.size(); ++v) {
+    if (degree[v] == 0) {
+      kind_[v] = Kind::Surface;
+      owner_[v] = vt_[v].empty() ? -1 : patch_[vt_[v][0]];
+      for (int t : vt_[v])
+        if (patch_[t] != owner_[v]) kind_[v] = Kind::Corner;  // a pinch: never move it
+    } else if (degree[v] == 2 && end[v] == 0 && curves_at[v] == 1) {
+      kind_[v] = Kind::Curve;
+      owner_[v] = curve_of[v];
+    } else {
+      kind_[v] = Kind::Corner;
+      owner_[v] = -1;
+    }
+  }
+  vertex_alive_.assign(x_.size(), 1);
+  for (std::size_t v = 0; v < x_.size(); ++v)
+    if (vt_[v].empty()) vertex_alive_[v] = 0;
+  alive_vertices_ = std::count(vertex_alive_.begin(), vertex_alive_.end(), 1);
+}
+
+double RemeshComplex::deviation() const {
+  return max_deviation_ > 0.0 ? std::max(max_deviation_, kDeviationPerEdge * L) * slack_ : 0.0;
+}
+
+std::size_t RemeshComplex::corners() const {
+  std::size_t n = 0;
+  for (std::size_t v = 0; v < x_.size(); ++v) n += vertex_alive_[v] && kind_[v] == Kind::Corner;
+  return n;
+}
+
+double RemeshComplex::s(const Vector3d& p) const {
+  return (size_ ? size_(p) : 1.0) * ball_factor(p, balls_.size());
+}
+
+double RemeshComplex::ball_factor(const Vector3d& p, std::size_t count) const {
+  double f = 1.0;
+  for (std::size_t i = 0; i < std::min(count, balls_.size()); ++i)
+    if ((p - balls_[i].centre).squaredNorm() < balls_[i].radius * balls_[i].radius) f = std::min(f, balls_[i].factor);
+  return f;
+}
+
+void RemeshComplex::refine_around(int result_triangle) {
+  const int t = result_to_internal_.at(result_triangle);
+  const Vector3d &a = x_[tri_[t][0]], &b = x_[tri_[t][1]], &c = x_[tri_[t][2]];
+  const double longest = std::max({(a - b).norm(), (b - c).norm(), (c - a).norm()});
+  const Vector3d centre = (a + b + c) / 3.0;
+  balls_.push_back({centre, 1.5 * longest, kRefineFactor * ball_factor(centre, balls_before_)});
+}
+
+double RemeshComplex::weighted_area() const {
+  double sum = 0.0;
+  for (std::size_t t = 0; t < tri_.size(); ++t) {
+    if (!tri_alive_[t]) continue;
+    const Vector3d &a = x_[tri_[t][0]], &b = x_[tri_[t][1]], &c = x_[tri_[t][2]];
+    const double st = s((a + b + c) / 3.0);
+    sum += area_vector(a, b, c).norm() / (st * st);
+  }
+  return sum;
+}
+
+std::vector<std::array<int, 2>> RemeshComplex::edges() const {
+  std::vector<std::array<int, 2>> out;
+  for (std::size_t t = 0; t < tri_.size(); ++t) {
+    if (!tri_alive_[t]) continue;
+    for (int i = 0; i < 3; ++i) {
+      const int a = tri_[t][i], b = tri_[t][(i + 1) % 3];
+      // Report each edge once: from its lowest-indexed live triangle.
+      bool first = true;
+      for (int u : vt_[a])
+        if (u < static_cast<int>(t) && has(u, b)) first = false;
+      if (first) out.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  return out;
+}
+
+bool RemeshComplex::edge_exists(int a, int b) const {
+  if (!vertex_alive_[a] || !vertex_alive_[b]) return false;
+  for (int t : vt_[a])
+    if (has(t, b)) return true;
+  return false;
+}
+
+void RemeshComplex::edge_triangles(int a, int b, std::vector<int>& out) const {
+  out.clear();
+  for (int t : vt_[a])
+    if (has(t, b)) out.push_back(t);
+}
+
+void RemeshComplex::neighbours(int v, std::vector<int>& out) const {
+  out.clear();
+  for (int t : vt_[v])
+    for (int w : tri_[t])
+      if (w != v) out.push_back(w);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+int RemeshComplex::curve_of_edge(int a, int b) const {
+  auto it = curve_edge_.find(edge_key(a, b));
+  return it == curve_edge_.end() ? -1 : it->second;
+}
+
+RemeshComplex::Vector3d RemeshComplex::normal(int t) const {
+  return area_vector(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]).normalized();
+}
+
+RemeshComplex::Vector3d RemeshComplex::moved_normal(int t, int v, const Vector3d& p) const {
+  Vector3d q[3];
+  for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == v ? p : x_[tri_[t][i]];
+  const Vector3d n = area_vector(q[0], q[1], q[2]);
+  const double len = n.norm();
+  return len > 0.0 ? Vector3d(n / len) : Vector3d::Zero();
+}
+
+bool RemeshComplex::move_keeps_normals(int v, const Vector3d& p, const std::vector<int>& tris, const std::vector<int>& skip) const {
+  for (int t : tris) {
+    if (std::find(skip.begin(), skip.end(), t) != skip.end()) continue;
+    if (moved_normal(t, v, p).dot(normal(t)) < kMinNormalTurnCos) return false;
+  }
+  return true;
+}
+
+bool RemeshComplex::keeps_represented(int v, const Vector3d& p) const {
+  if (!(deviation() > 0.0) || represents_[v].empty()) return true;
+  for (int r : represents_[v]) {
+    double d = INFINITY;
+    for (int t : vt_[v]) {
+      Vector3d q[3];
+      for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == v ? p : x_[tri_[t][i]];
+      d = std::min(d, point_triangle_distance(reference_[r], q[0], q[1], q[2]));
+      if (d <= deviation()) break;
+    }
+    if (d > deviation()) return false;
+  }
+  return true;
+}
+
+bool RemeshComplex::split(int a, int b) {
+  std::vector<int> ts;
+  edge_triangles(a, b, ts);
+  const int curve = curve_of_edge(a, b);
+  Vector3d m = 0.5 * (x_[a] + x_[b]);
+  const int v = static_cast<int>(x_.size());
+  if (curve < 0) {
+    Vector3d n_ref, n = Vector3d::Zero();
+    for (int t : ts) n += normal(t);
+    m = proj_.onto_patch(patch_[ts[0]], m, &n_ref);
+    if (!(n_ref.dot(n) > 0.0)) return false;
+    kind_.push_back(Kind::Surface);
+    owner_.push_back(patch_[ts[0]]);
+  } else {
+    m = proj_.onto_curve(curve, m);
+    kind_.push_back(Kind::Curve);
+    owner_.push_back(curve);
+    curve_edge_.erase(edge_key(a, b));
+    curve_edge_[edge_key(a, v)] = curve;
+    curve_edge_[edge_key(v, b)] = curve;
+    ++curve_edges_[curve];
+  }
+  x_.push_back(m);
+  represents_.emplace_back();
+  vt_.emplace_back();
+  vertex_alive_.push_back(1);
+  ++alive_vertices_;
+  for (int t : ts) {
+    std::array<int, 3>& tr = tri_[t];
+    int i = 0;
+    while (!((tr[i] == a || tr[i] == b) && (tr[(i + 1) % 3] == a || tr[(i + 1) % 3] == b))) ++i;
+    const int u = tr[i], w = tr[(i + 1) % 3], o = tr[(i + 2) % 3];
+    const int n = static_cast<int>(tri_.size());
+    tr = {u, v, o};
+    tri_.push_back({v, w, o});
+    patch_.push_back(patch_[t]);
+    tri_alive_.push_back(1);
+    std::replace(vt_[w].begin(), vt_[w].end(), t, n);
+    vt_[o].push_back(n);
+    vt_[v].push_back(t);
+    vt_[v].push_back(n);
+  }
+  ++splits;
+  return true;
+}
+
+bool RemeshComplex::collapse_allowed(int a, int b, const std::vector<int>& ts) const {
+  if (kind_[a] == Kind::Corner) return false;
+  const int curve = curve_of_edge(a, b);
+  if (kind_[a] == Kind::Surface && curve >= 0) return false;
+  if (kind_[a] == Kind::Curve) {
+    if (curve != owner_[a]) return false;
+    if (curve_edges_[curve] <= (curve_closed_[curve] ? 3 : 1)) return false;
+  }
+  // Link condition: the common neighbours are exactly the opposite vertices of the edge's triangles.
+  std::vector<int> na, nb, common;
+  neighbours(a, na);
+  neighbours(b, nb);
+  std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
+  return common.size() == ts.size();
+}
+
+bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
+  std::vector<int> ts;
+  edge_triangles(a, b, ts);
+  if (ts.empty() || !collapse_allowed(a, b, ts)) return false;
+  std::vector<int> na;
+  neighbours(a, na);
+  for (int w : na)
+    if (w != b && (x_[b] - x_[w]).norm() > max_relative * h(0.5 * (x_[b] + x_[w]))) return false;
+  if (!move_keeps_normals(a, x_[b], vt_[a], ts)) return false;
+  // Approximation: every input vertex a or b stands for stays within max_deviation of the new
+  // triangles around b (a removal is checked against what remains, so errors cannot pile up).
+  if (deviation() > 0.0) {
+    std::vector<std::array<Vector3d, 3>> ring;
+    for (int v : {a, b})
+      for (int t : vt_[v]) {
+        if (std::find(ts.begin(), ts.end(), t) != ts.end()) continue;
+        std::array<Vector3d, 3> q;
+        for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == a ? x_[b] : x_[tri_[t][i]];
+        ring.push_back(q);
+      }
+    for (int v : {a, b})
+      for (int r : represents_[v]) {
+        double d = INFINITY;
+        for (const auto& q : ring) d = std::min(d, point_triangle_distance(reference_[r], q[0], q[1], q[2]));
+        if (d > deviation()) return false;
+      }
+  }
+  // Fidelity: every changed triangle stays close to its patch of the reference and faces the same
+  // way there (a triangle bridging the two sides of a thin sheet fails both).
+  for (int t : vt_[a]) {
+    if (std::find(ts.begin(), ts.end(), t) != ts.end()) continue;
+    Vector3d q[3];
+    for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == a ? x_[b] : x_[tri_[t][i]];
+    const Vector3d g = (q[0] + q[1] + q[2]) / 3.0, n = area_vector(q[0], q[1], q[2]).normalized();
+    Vector3d n_ref;
+    const Vector3d on = proj_.onto_patch(patch_[t], g, &n_ref);
+    if (n.dot(n_ref) < kMinNormalTurnCos) return false;
+    if (deviation() > 0.0 && (on - g).norm() > deviation()) return false;
+  }
+  // A triangle of a that would coincide with one of b (a pocket between patches closing up).
+  for (int t : vt_[a]) {
+    if (std::find(ts.begin(), ts.end(), t) != ts.end()) continue;
+    for (int u : vt_[b]) {
+      int shared = 0;
+      for (int w : tri_[t]) shared += w != a && has(u, w);
+      if (shared == 2) return false;
+    }
+  }
+  // Apply.
+  for (int t : ts) {
+    tri_alive_[t] = 0;
+    for (int w : tri_[t]) vt_[w].erase(std::remove(vt_[w].begin(), vt_[w].end(), t), vt_[w].end());
+  }
+  for (int t : vt_[a]) {
+    std::replace(tri_[t].begin(), tri_[t].end(), a, b);
+    vt_[b].push_back(t);
+  }
+  std::sort(vt_[b].begin(), vt_[b].end());
+  vt_[a].clear();
+  if (kind_[a] == Kind::Curve) {
+    const int curve = owner_[a];
+    curve_edge_.erase(edge_key(a, b));
+    for (int w : na) {
+      auto it = curve_edge_.find(edge_key(a, w));
+      if (it == curve_edge_.end()) continue;
+      curve_edge_.erase(it);
+      curve_edge_[edge_key(b, w)] = curve;
+    }
+    --curve_edges_[curve];
+  }
+  represents_[b].insert(represents_[b].end(), represents_[a].begin(), represents_[a].end());
+  represents_[a].clear();
+  vertex_alive_[a] = 0;
+  --alive_vertices_;
+  ++collapses;
+  return true;
+}
+
+bool RemeshComplex::collapse_either(int a, int b, double max_relative) {
+  // Prefer removing the vertex of lower rank (surface before curve), then the higher index.
+  if (kind_[a] < kind_[b] || (kind_[a] == kind_[b] && a > b)) {
+    if (try_collapse(a, b, max_relative)) return true;
+    return try_collapse(b, a, max_relative);
+  }
+  if (try_collapse(b, a, max_relative)) return true;
+  return try_collapse(a, b, max_relative);
+}
+
+bool RemeshComplex::try_flip(int a, int b) {
+  if (curve_of_edge(a, b) >= 0) return false;
+  std::vector<int> ts;
+  edge_triangles(a, b, ts);
+  if (ts.size() != 2 || patch_[ts[0]] != patch_[ts[1]]) return false;
+  int t1 = ts[0], t2 = ts[1];
+  // Orient: t1 holds the directed edge a -> b.
+  auto directed = [&](int t, int p, int q) {
+    for (int i = 0; i < 3; ++i)
+      if (tri_[t][i] == p && tri_[t][(i + 1) % 3] == q) return true;
+    return false;
+  };
+  if (!directed(t1, a, b)) std::swap(a, b);
+  if (!directed(t1, a, b) || !directed(t2, b, a)) return false;
+  auto third = [&](int t, int p, int q) {
+    for (int w : tri_[t])
+      if (w != p && w != q) return w;
+    return -1;
+  };
+  const int c = third(t1, a, b), d = third(t2, a, b);
+  if (c == d || edge_exists(c, d)) return false;
+  if (vt_[a].size() <= 3 || vt_[b].size() <= 3) return false;
+  const Vector3d &pa = x_[a], &pb = x_[b], &pc = x_[c], &pd = x_[d];
+  // Delaunay: flip when the opposite angles sum beyond pi, i.e. the new diagonal gives the
+  // larger smallest angle.
+  if (triangle_angles(pa, pb, pc)[2] + triangle_angles(pb, pa, pd)[2] <= M_PI + 1e-9) return false;
+  if (std::min(min_angle(pa, pd, pc), min_angle(pd, pb, pc)) <= std::min(min_angle(pa, pb, pc), min_angle(pb, pa, pd)))
+    return false;
+  const Vector3d n1 = area_vector(pa, pb, pc).normalized(), n2 = area_vector(pb, pa, pd).normalized();
+  const Vector3d m1 = area_vector(pa, pd, pc).normalized(), m2 = area_vector(pd, pb, pc).normalized();
+  if (m1.dot(m2) < std::min(n1.dot(n2), kFlipFlatCos)) return false;
+  const Vector3d mean = (n1 + n2).normalized();
+  if (m1.dot(mean) < kMinNormalTurnCos || m2.dot(mean) < kMinNormalTurnCos) return false;
+  tri_[t1] = {a, d, c};
+  tri_[t2] = {d, b, c};
+  vt_[b].erase(std::remove(vt_[b].begin(), vt_[b].end(), t1), vt_[b].end());
+  vt_[a].erase(std::remove(vt_[a].begin(), vt_[a].end(), t2), vt_[a].end());
+  vt_[d].push_back(t1);
+  vt_[c].push_back(t2);
+  ++flips;
+  return true;
+}
+
+std::size_t RemeshComplex::split_long() {
+  std::size_t n = 0;
+  for (const auto& e : edges())
+    if (edge_exists(e[0], e[1]) && relative_length(e[0], e[1]) > kSplitAbove && split(e[0], e[1])) ++n;
+  return n;
+}
+
+std::size_t RemeshComplex::collapse_short() {
+  std::size_t n = 0;
+  for (const auto& e : edges())
+    if (edge_exists(e[0], e[1]) && relative_length(e[0], e[1]) < kCollapseBelow && collapse_either(e[0], e[1], kSplitAbove))
+      ++n;
+  return n;
+}
+
+std::size_t RemeshComplex::flip_all() {
+  std::size_t n = 0;
+  for (const auto& e : edges())
+    if (edge_exists(e[0], e[1]) && try_flip(e[0], e[1])) ++n;
+  return n;
+}
+
+void RemeshComplex::relax() {
+  std::vector<int> nb;
+  for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
+    if (!vertex_alive_[v] || kind_[v] == Kind::Corner) continue;
+    Vector3d target;
+    if (kind_[v] == Kind::Surface) {
+      Vector3d centroid = Vector3d::Zero(), n = Vector3d::Zero();
+      double weight = 0.0;
+      for (int t : vt_[v]) {
+        const Vector3d &a = x_[tri_[t][0]], &b = x_[tri_[t][1]], &c = x_[tri_[t][2]];
+        const Vector3d av = area_vector(a, b, c), g = (a + b + c) / 3.0;
+        const double st = s(g), w = av.norm() / (st * st);
+        centroid += w * g;
+        weight += w;
+        n += av;
+      }
+      if (!(weight > 0.0) || n.norm() == 0.0) continue;
+      n.normalize();
+      const Vector3d d = centroid / weight - x_[v];
+      Vector3d n_ref;
+      target = proj_.onto_patch(owner_[v], x_[v] + d - n.dot(d) * n, &n_ref);
+      if (n_ref.dot(n) <= 0.0) continue;  // the far side of a thin sheet: stay
+    } else {
+      neighbours(v, nb);
+      Vector3d sum = Vector3d::Zero();
+      double weight = 0.0;
+      int found = 0;
+      for (int w : nb) {
+        if (curve_of_edge(v, w) != owner_[v]) continue;
+        const Vector3d mid = 0.5 * (x_[v] + x_[w]);
+        const double st = s(mid), wt = (x_[w] - x_[v]).norm() / (st * st);
+        sum += wt * (0.5 * (mid + x_[v]));  // centroid of the half-segment towards w
+        weight += wt;
+        ++found;
+      }
+      if (found != 2 || !(weight > 0.0)) continue;
+      target = proj_.onto_curve(owner_[v], sum / weight);
+    }
+    if (move_keeps_normals(v, target, vt_[v], {}) && keeps_represented(v, target)) x_[v] = target;
+  }
+}
+
+bool RemeshComplex::match_count(std::size_t target) {
+  for (int round = 0; round < 20 && alive_vertices_ != target; ++round) {
+    std::vector<std::pair<double, std::array<int, 2>>> ranked;
+    for (const auto& e : edges()) ranked.push_back({relative_length(e[0], e[1]), e});
+    const bool remove = alive_vertices_ > target;
+    if (remove)
+      std::sort(ranked.begin(), ranked.end());
+    else
+      std::sort(ranked.begin(), ranked.end(), [](const auto& p, const auto& q) { return p.first > q.first || (p.first == q.first && p.second < q.second); });
+    const std::size_t before = alive_vertices_;
+    std::vector<char> touched(x_.size(), 0);  // edges ranked before this round's splits
+    for (const auto& r : ranked) {
+      if (alive_vertices_ == target) break;
+      const int a = r.second[0], b = r.second[1];
+      if (touched[a] || touched[b] || !edge_exists(a, b)) continue;
+      if (remove ? collapse_either(a, b, 2.0 * kSplitAbove) : split(a, b)) touched[a] = touched[b] = 1;
+    }
+    if (alive_vertices_ == before) slack_ *= 1.5;  // every candidate refused: loosen the bound
+  }
+  slack_ = 1.0;
+  return alive_vertices_ == target;
+}
+
+TriSurface RemeshComplex::result(const TriSurface& in) {
+  result_to_internal_.clear();
+  TriSurface out;
+  out.tissue_names = in.tissue_names;
+  std::vector<int> index(x_.size(), -1);
+  for (std::size_t v = 0; v < x_.size(); ++v)
+    if (vertex_alive_[v]) {
+      index[v] = static_cast<int>(out.points.size());
+      out.points.push_back(x_[v]);
+    }
+  for (std::size_t t = 0; t < tri_.size(); ++t) {
+    if (!tri_alive_[t]) continue;
+    out.triangles.push_back({index[tri_[t][0]], index[tri_[t][1]], index[tri_[t][2]]});
+    result_to_internal_.push_back(static_cast<int>(t));
+    out.labels.push_back(proj_.patches().pair_of_patch[patch_[t]]);
+  }
+  // Junction polylines: chain each curve's edges, from an end (open) or its lowest vertex (closed).
+  std::vector<std::vector<std::array<int, 2>>> by_curve(curve_edges_.size());
+  for (const auto& kv : curve_edge_)
+    by_curve[kv.second].push_back({static_cast<int>(kv.first >> 32), static_cast<int>(kv.first & 0xffffffffu)});
+  for (std::size_t c = 0; c < by_curve.size(); ++c) {
+    auto& es = by_curve[c];
+    std::sort(es.begin(), es.end());
+    std::unordered_map<int, std::vector<int>> adj;
+    for (const auto& e : es) {
+      adj[e[0]].push_back(e[1]);
+      adj[e[1]].push_back(e[0]);
+    }
+    int start = -1;  // open: the lowest-indexed end; closed: the lowest vertex
+    for (const auto& kv : adj)
+      if (kv.second.size() == 1 && (start < 0 || kv.first < start)) start = kv.first;
+    if (start < 0) start = es.front()[0];
+    std::vector<int> line{start};
+    int prev = -1, cur = start;
+    for (std::size_t k = 0; k < es.size(); ++k) {
+      int n = -1;
+      for (int w : adj[cur])
+        if (w != prev && (n < 0 || w < n)) n = w;
+      if (n < 0) break;
+      prev = cur;
+      cur = n;
+      line.push_back(cur);
+    }
+    if (line.size() != es.size() + 1)
+      throw MeshingError("surface remeshing broke junction polyline " + std::to_string(c));
+    for (int& v : line) v = index[v];
+    out.junctions.push_back(std::move(line));
+  }
+  return out;
+}
+
+}  // namespace tissuemesh

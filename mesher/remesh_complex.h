@@ -1,0 +1,149 @@
+// RemeshComplex: the working mesh of the surface remesher (mesher/surface_remesh.h) and its local
+// operations on the whole multi-material complex (Botsch & Kobbelt 2004, extended to junction
+// curves), against a size field h(x) = L s(x):
+//   split     edges longer than 4/3 h at their midpoint, which is projected onto the edge's patch or,
+//             for a junction edge, onto its junction polyline (every triangle around it is split);
+//   collapse  edges shorter than 4/5 h when no edge of the result is longer than 4/3 h: a surface
+//             vertex into any neighbour across a non-junction edge, a curve vertex only into its
+//             neighbour along the same junction; corners (polyline ends, where curves meet) stay;
+//             the link condition (the endpoints share exactly the opposite vertices of the edge's
+//             triangles) keeps every tissue's boundary a closed manifold;
+//   flip      non-junction edges to the Delaunay diagonal of their two triangles (same patch),
+//             when the two new triangles do not fold against each other;
+//   relax     density-weighted centroidal relaxation: a surface vertex moves to the centroid of its
+//             one-ring weighted by area / h^2 (a discrete centroidal Voronoi step, Lloyd on the
+//             surface), tangentially, then onto its patch of the reference surface; a curve
+//             vertex to the weighted midpoint of its two curve neighbours, then onto its junction.
+// Every operation keeps the patch labels, the orientation and the junction polylines (their
+// vertices and edges are replaced along the same curve), and refuses a move that flips a
+// triangle. Shape: each vertex carries the input vertices collapsed into it, and a collapse or
+// relaxation move is refused when one of them would end up farther than the approximation bound
+// (max(max_deviation_mm, L/4)) from the triangles around it, or when a changed triangle would leave
+// its patch by more than that bound or face away from it (a triangle bridging the two sides of a
+// thin sheet); split midpoints and relaxed points that would project onto the far side of a thin
+// sheet are refused too. Refinement balls (refine_around) shrink s locally. Deterministic: every
+// sweep visits triangles and vertices in index order. Not parallel.
+#pragma once
+
+#include "core/tri_surface.h"
+#include "mesher/surface_projection.h"
+#include "mesher/surface_remesh.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <unordered_map>
+#include <vector>
+
+namespace tissuemesh {
+
+class RemeshComplex {
+ public:
+  /// `in` is the reference surface (valid, closed per tissue); `projection` is built on it and
+  /// must outlive this object. Takes options.relative_size and options.max_deviation_mm.
+  RemeshComplex(const TriSurface& in, const SurfaceProjection& projection, const RemeshOptions& options);
+
+  double L = 1.0;  ///< edge length where s = 1, mm
+  std::size_t splits = 0, collapses = 0, flips = 0;
+
+  std::size_t vertices() const { return alive_vertices_; }
+  /// Live vertices that never move or go (junction corners, pinches).
+  std::size_t corners() const;
+  /// Integral of 1 / s^2 over the surface (each triangle once), mm^2.
+  double weighted_area() const;
+
+  // Sweeps over all edges (or vertices), in index order; each returns how many operations it did.
+  std::size_t split_long();
+  std::size_t collapse_short();
+  std::size_t flip_all();
+  void relax();
+
+  /// Collapses the relatively shortest or splits the relatively longest edges until the vertex
+  /// count is `target`; false when it cannot get there (every candidate refused, even with the
+  /// approximation bound loosened by 1.5x per stuck round).
+  bool match_count(std::size_t target);
+
+  /// Starts a refinement round: its balls halve the size of the rounds before, not each other's.
+  void begin_refinement() { balls_before_ = balls_.size(); }
+  /// Halves the size inside a ball around triangle `result_triangle` of the last result().
+  void refine_around(int result_triangle);
+
+  /// The live mesh, compacted, with its junction polylines chained again (labels and tissue names
+  /// from `in`). Throws MeshingError if a junction no longer forms one polyline (a bug).
+  TriSurface result(const TriSurface& in);
+
+ private:
+  using Vector3d = Eigen::Vector3d;
+  enum class Kind : char { Surface, Curve, Corner };
+  struct Ball {
+    Vector3d centre;
+    double radius;
+    double factor;
+  };
+
+  /// The approximation bound in force: the caller's floor, or a quarter of the edge length when
+  /// that is larger (a coarse budget cannot follow the surface to within a voxel); grown by
+  /// match_count when the budget cannot be met otherwise.
+  double deviation() const;
+  double s(const Vector3d& p) const;
+  double h(const Vector3d& p) const { return L * s(p); }
+  /// The smallest factor of the first `count` refinement balls containing p (1 outside all).
+  double ball_factor(const Vector3d& p, std::size_t count) const;
+  /// Length of edge (a, b) relative to h at its midpoint.
+  double relative_length(int a, int b) const { return (x_[a] - x_[b]).norm() / h(0.5 * (x_[a] + x_[b])); }
+
+  /// Edges (a < b) of the live triangles, in triangle order (deterministic).
+  std::vector<std::array<int, 2>> edges() const;
+  bool has(int t, int v) const { return tri_[t][0] == v || tri_[t][1] == v || tri_[t][2] == v; }
+  bool edge_exists(int a, int b) const;
+  void edge_triangles(int a, int b, std::vector<int>& out) const;
+  void neighbours(int v, std::vector<int>& out) const;
+  int curve_of_edge(int a, int b) const;  ///< -1 for a non-junction edge
+  Vector3d normal(int t) const;
+  /// Normal of triangle t with vertex `v` moved to `p`.
+  Vector3d moved_normal(int t, int v, const Vector3d& p) const;
+  /// True when moving v to p turns no triangle of `tris` (skipping `skip`) beyond the limit.
+  bool move_keeps_normals(int v, const Vector3d& p, const std::vector<int>& tris, const std::vector<int>& skip) const;
+  /// True when every input vertex that v stands for stays within deviation() of v's triangles
+  /// with v moved to p (relaxation must not shave off a tip that collapses left to v).
+  bool keeps_represented(int v, const Vector3d& p) const;
+
+  /// Splits edge (a, b); false (nothing changed) when its midpoint would project onto the far side
+  /// of a thin sheet of tissue.
+  bool split(int a, int b);
+  /// May vertex a be removed by moving it onto b (topology and kinds only)?
+  bool collapse_allowed(int a, int b, const std::vector<int>& ts) const;
+  /// Collapses a into b if allowed and geometrically sound; `max_relative` bounds the new edges.
+  bool try_collapse(int a, int b, double max_relative);
+  /// Removes the lower-ranked vertex of (a, b) (surface before curve, then the higher index), or
+  /// the other when that is refused.
+  bool collapse_either(int a, int b, double max_relative);
+  bool try_flip(int a, int b);
+
+  const SurfaceProjection& proj_;
+  std::function<double(const Vector3d&)> size_;
+  double max_deviation_ = 0.0;
+  double slack_ = 1.0;  ///< deviation() multiplier, raised by match_count when stuck
+  std::vector<Vector3d> reference_;             ///< the input vertices
+  std::vector<std::vector<int>> represents_;    ///< per vertex: input vertices collapsed into it
+  std::size_t balls_before_ = 0;
+  std::vector<Ball> balls_;               ///< local refinement where the result self-intersected
+  std::vector<int> result_to_internal_;   ///< triangle of the last result() -> internal index
+  std::vector<Vector3d> x_;
+  std::vector<Kind> kind_;
+  std::vector<int> owner_;  ///< patch (surface vertex), curve (curve vertex), -1 (corner)
+  std::vector<char> vertex_alive_;
+  std::vector<std::array<int, 3>> tri_;
+  std::vector<int> patch_;
+  std::vector<char> tri_alive_;
+  std::vector<std::vector<int>> vt_;
+  std::unordered_map<std::uint64_t, int> curve_edge_;
+  std::vector<int> curve_edges_;
+  std::vector<char> curve_closed_;
+  std::size_t alive_vertices_ = 0;
+};
+
+}  // namespace tissuemesh

@@ -1,0 +1,47 @@
+#include "mesher/triangle_geometry.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tissuemesh {
+
+using Eigen::Vector3d;
+
+Vector3d area_vector(const Vector3d& a, const Vector3d& b, const Vector3d& c) { return 0.5 * (b - a).cross(c - a); }
+
+std::array<double, 3> triangle_angles(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  const double twice_area = 2.0 * area_vector(a, b, c).norm();
+  if (!(twice_area > 0.0)) return {0.0, 0.0, 0.0};
+  return {std::atan2(twice_area, (b - a).dot(c - a)), std::atan2(twice_area, (a - b).dot(c - b)),
+          std::atan2(twice_area, (a - c).dot(b - c))};
+}
+
+double min_angle(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  const std::array<double, 3> angles = triangle_angles(a, b, c);
+  return std::min({angles[0], angles[1], angles[2]});
+}
+
+double point_triangle_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  const Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return ap.norm();
+  const Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return bp.norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
+  const Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return cp.norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+  const double denom = 1.0 / (va + vb + vc);
+  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
+}
+
+}  // namespace tissuemesh

@@ -1,0 +1,26 @@
+// Small geometry of one triangle in 3D (mm): area vector, interior angles, point distance.
+// Shared by the surface quality figures (Table 1) and the surface remesher, so both judge a
+// triangle's angles by the same formula.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+
+namespace tissuemesh {
+
+/// Half the cross product (b - a) x (c - a): normal by the right-hand rule, norm = area.
+Eigen::Vector3d area_vector(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+/// Interior angles (radians) at a, b and c, each as atan2(2 area, dot of its two edges): accurate
+/// for every shape; all zero for a zero-area triangle.
+std::array<double, 3> triangle_angles(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+/// Smallest interior angle (radians).
+double min_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+/// Distance from p to the closed triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
+double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                               const Eigen::Vector3d& c);
+
+}  // namespace tissuemesh
