@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Benchmark of the surface pipeline (issue #5) on the default phantom with configs/paper-21k.yaml:
+# Benchmark of the surface pipeline (issue #5) on the default phantom with configs/paper-21k.yaml and paper-2k.yaml:
 # median over N runs (default 5) of the extraction (label check + repair + surface nets) and of the
 # remeshing stage, from each run's report.json timings, and of the whole command's wall time (which
 # also includes reading, the Hausdorff measurement and writing). The issue's target: extraction +
@@ -11,7 +11,7 @@ source "$(dirname "$0")/common.sh"
 
 echo "| config | vertices | extraction median [s] | remeshing median [s] | extraction + remeshing median [s] (min-max) | whole command median [s] | peak memory median [MiB] |"
 echo "|---|---|---|---|---|---|---|"
-for cfg in configs/paper-21k.yaml; do
+for cfg in configs/paper-21k.yaml configs/paper-2k.yaml; do
   : > "$WORK/ext"; : > "$WORK/rem"; : > "$WORK/sum"; : > "$WORK/wall"; : > "$WORK/mem"
   for i in $(seq "$RUNS"); do
     mesh_timed "$cfg" "$WORK/wall"

@@ -26,9 +26,12 @@ constexpr double kFlipFlatCos = 0.906;
 /// The approximation bound is at least this fraction of the edge length L.
 constexpr double kDeviationPerEdge = 0.25;
 
-/// Size factor of a refinement ball around a self-intersection, relative to the size the earlier
-/// rounds left there.
-constexpr double kRefineFactor = 0.5;
+Eigen::AlignedBox3d box_of(const TrianglePoints& p) {
+  Eigen::AlignedBox3d b(p[0]);
+  b.extend(p[1]);
+  b.extend(p[2]);
+  return b;
+}
 
 std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
@@ -101,24 +104,7 @@ std::size_t RemeshComplex::corners() const {
   return n;
 }
 
-double RemeshComplex::s(const Vector3d& p) const {
-  return (size_ ? size_(p) : 1.0) * ball_factor(p, balls_.size());
-}
-
-double RemeshComplex::ball_factor(const Vector3d& p, std::size_t count) const {
-  double f = 1.0;
-  for (std::size_t i = 0; i < std::min(count, balls_.size()); ++i)
-    if ((p - balls_[i].centre).squaredNorm() < balls_[i].radius * balls_[i].radius) f = std::min(f, balls_[i].factor);
-  return f;
-}
-
-void RemeshComplex::refine_around(int result_triangle) {
-  const int t = result_to_internal_.at(result_triangle);
-  const Vector3d &a = x_[tri_[t][0]], &b = x_[tri_[t][1]], &c = x_[tri_[t][2]];
-  const double longest = std::max({(a - b).norm(), (b - c).norm(), (c - a).norm()});
-  const Vector3d centre = (a + b + c) / 3.0;
-  balls_.push_back({centre, 1.5 * longest, kRefineFactor * ball_factor(centre, balls_before_)});
-}
+double RemeshComplex::s(const Vector3d& p) const { return size_ ? size_(p) : 1.0; }
 
 double RemeshComplex::weighted_area() const {
   double sum = 0.0;
@@ -209,6 +195,70 @@ bool RemeshComplex::keeps_represented(int v, const Vector3d& p) const {
   return true;
 }
 
+RemeshComplex::NewTriangle RemeshComplex::moved_triangle(int t, int v, const Vector3d& p, int id) const {
+  NewTriangle n;
+  for (int i = 0; i < 3; ++i) {
+    const bool moved = tri_[t][i] == v;
+    n.v[i] = moved ? id : tri_[t][i];
+    n.p[i] = moved ? p : x_[tri_[t][i]];
+  }
+  return n;
+}
+
+void RemeshComplex::collect_moved(const std::vector<int>& tris, const std::vector<int>& skip, int v, const Vector3d& p,
+                                  int id) {
+  created_.clear();
+  for (int t : tris)
+    if (std::find(skip.begin(), skip.end(), t) == skip.end()) created_.push_back(moved_triangle(t, v, p, id));
+}
+
+double RemeshComplex::ring_min_angle(int v, const Vector3d& p) const {
+  double m = INFINITY;
+  for (int t : vt_[v]) {
+    const NewTriangle q = moved_triangle(t, v, p, v);
+    m = std::min(m, min_angle(q.p[0], q.p[1], q.p[2]));
+  }
+  return m;
+}
+
+bool RemeshComplex::would_intersect(const std::vector<int>& replaced) {
+  const std::vector<NewTriangle>& created = created_;
+  for (std::size_t i = 0; i < created.size(); ++i)
+    for (std::size_t j = i + 1; j < created.size(); ++j)
+      if (triangles_intersect(created[i].p, created[i].v, created[j].p, created[j].v)) return true;
+  if (seen_.size() < tri_.size()) seen_.resize(tri_.size(), 0);
+  for (const NewTriangle& c : created) {
+    ++stamp_;
+    for (int t : replaced) seen_[t] = stamp_;
+    const Eigen::AlignedBox3d box = box_of(c.p);
+    candidates_.clear();
+    grid_.query(box, candidates_);
+    for (int u : candidates_) {
+      if (seen_[u] == stamp_ || !tri_alive_[u]) continue;
+      seen_[u] = stamp_;
+      const TrianglePoints q{x_[tri_[u][0]], x_[tri_[u][1]], x_[tri_[u][2]]};
+      if (box.intersects(box_of(q)) && triangles_intersect(c.p, c.v, q, tri_[u])) return true;
+    }
+  }
+  return false;
+}
+
+void RemeshComplex::index_triangle(int t) { grid_.insert(t, box_of({x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]})); }
+
+void RemeshComplex::rebuild_grid() {
+  // Cells about the size of a triangle: a query then visits a few cells of a few triangles each.
+  double extent = 0.0;
+  std::size_t n = 0;
+  for (std::size_t t = 0; t < tri_.size(); ++t)
+    if (tri_alive_[t]) {
+      extent += box_of({x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]}).sizes().maxCoeff();
+      ++n;
+    }
+  grid_.reset(n > 0 && extent > 0.0 ? extent / static_cast<double>(n) : 1.0);
+  for (std::size_t t = 0; t < tri_.size(); ++t)
+    if (tri_alive_[t]) index_triangle(static_cast<int>(t));
+}
+
 bool RemeshComplex::split(int a, int b) {
   std::vector<int> ts;
   edge_triangles(a, b, ts);
@@ -220,10 +270,19 @@ bool RemeshComplex::split(int a, int b) {
     for (int t : ts) n += normal(t);
     m = proj_.onto_patch(patch_[ts[0]], m, &n_ref);
     if (!(n_ref.dot(n) > 0.0)) return false;
+  } else {
+    m = proj_.onto_curve(curve, m);
+  }
+  created_.clear();
+  for (int t : ts) {
+    created_.push_back(moved_triangle(t, b, m, v));
+    created_.push_back(moved_triangle(t, a, m, v));
+  }
+  if (would_intersect(ts)) return false;
+  if (curve < 0) {
     kind_.push_back(Kind::Surface);
     owner_.push_back(patch_[ts[0]]);
   } else {
-    m = proj_.onto_curve(curve, m);
     kind_.push_back(Kind::Curve);
     owner_.push_back(curve);
     curve_edge_.erase(edge_key(a, b));
@@ -250,6 +309,8 @@ bool RemeshComplex::split(int a, int b) {
     vt_[o].push_back(n);
     vt_[v].push_back(t);
     vt_[v].push_back(n);
+    index_triangle(t);
+    index_triangle(n);
   }
   ++splits;
   return true;
@@ -319,6 +380,8 @@ bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
       if (shared == 2) return false;
     }
   }
+  collect_moved(vt_[a], ts, a, x_[b], b);
+  if (would_intersect(vt_[a])) return false;
   // Apply.
   for (int t : ts) {
     tri_alive_[t] = 0;
@@ -327,6 +390,7 @@ bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
   for (int t : vt_[a]) {
     std::replace(tri_[t].begin(), tri_[t].end(), a, b);
     vt_[b].push_back(t);
+    index_triangle(t);
   }
   std::sort(vt_[b].begin(), vt_[b].end());
   vt_[a].clear();
@@ -392,8 +456,12 @@ bool RemeshComplex::try_flip(int a, int b) {
   if (m1.dot(m2) < std::min(n1.dot(n2), kFlipFlatCos)) return false;
   const Vector3d mean = (n1 + n2).normalized();
   if (m1.dot(mean) < kMinNormalTurnCos || m2.dot(mean) < kMinNormalTurnCos) return false;
+  created_ = {{{a, d, c}, {pa, pd, pc}}, {{d, b, c}, {pd, pb, pc}}};
+  if (would_intersect(ts)) return false;
   tri_[t1] = {a, d, c};
   tri_[t2] = {d, b, c};
+  index_triangle(t1);
+  index_triangle(t2);
   vt_[b].erase(std::remove(vt_[b].begin(), vt_[b].end(), t1), vt_[b].end());
   vt_[a].erase(std::remove(vt_[a].begin(), vt_[a].end(), t2), vt_[a].end());
   vt_[d].push_back(t1);
@@ -403,6 +471,7 @@ bool RemeshComplex::try_flip(int a, int b) {
 }
 
 std::size_t RemeshComplex::split_long() {
+  rebuild_grid();
   std::size_t n = 0;
   for (const auto& e : edges())
     if (edge_exists(e[0], e[1]) && relative_length(e[0], e[1]) > kSplitAbove && split(e[0], e[1])) ++n;
@@ -410,6 +479,7 @@ std::size_t RemeshComplex::split_long() {
 }
 
 std::size_t RemeshComplex::collapse_short() {
+  rebuild_grid();
   std::size_t n = 0;
   for (const auto& e : edges())
     if (edge_exists(e[0], e[1]) && relative_length(e[0], e[1]) < kCollapseBelow && collapse_either(e[0], e[1], kSplitAbove))
@@ -418,6 +488,7 @@ std::size_t RemeshComplex::collapse_short() {
 }
 
 std::size_t RemeshComplex::flip_all() {
+  rebuild_grid();
   std::size_t n = 0;
   for (const auto& e : edges())
     if (edge_exists(e[0], e[1]) && try_flip(e[0], e[1])) ++n;
@@ -425,6 +496,7 @@ std::size_t RemeshComplex::flip_all() {
 }
 
 void RemeshComplex::relax() {
+  rebuild_grid();
   std::vector<int> nb;
   for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
     if (!vertex_alive_[v] || kind_[v] == Kind::Corner) continue;
@@ -462,8 +534,64 @@ void RemeshComplex::relax() {
       if (found != 2 || !(weight > 0.0)) continue;
       target = proj_.onto_curve(owner_[v], sum / weight);
     }
-    if (move_keeps_normals(v, target, vt_[v], {}) && keeps_represented(v, target)) x_[v] = target;
+    if (!move_keeps_normals(v, target, vt_[v], {}) || !keeps_represented(v, target)) continue;
+    collect_moved(vt_[v], {}, v, target, v);
+    if (would_intersect(vt_[v])) continue;
+    x_[v] = target;
+    for (int t : vt_[v]) index_triangle(t);
   }
+}
+
+std::size_t RemeshComplex::smooth_poor(double min_angle_rad) {
+  rebuild_grid();
+  std::vector<char> todo(x_.size(), 0);
+  for (std::size_t t = 0; t < tri_.size(); ++t)
+    if (tri_alive_[t] && min_angle(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]) < min_angle_rad)
+      for (int v : tri_[t]) todo[v] = 1;
+  std::size_t moved = 0;
+  std::vector<int> nb;
+  for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
+    if (!todo[v] || !vertex_alive_[v] || kind_[v] == Kind::Corner) continue;
+    neighbours(v, nb);
+    Vector3d target;
+    if (kind_[v] == Kind::Surface) {
+      Vector3d c = Vector3d::Zero(), n = Vector3d::Zero();
+      for (int w : nb) c += x_[w];
+      c /= static_cast<double>(nb.size());
+      for (int t : vt_[v]) n += area_vector(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]);
+      if (n.norm() == 0.0) continue;
+      n.normalize();
+      const Vector3d d = c - x_[v];
+      Vector3d n_ref;
+      target = proj_.onto_patch(owner_[v], x_[v] + d - n.dot(d) * n, &n_ref);
+      if (n_ref.dot(n) <= 0.0) continue;
+    } else {
+      Vector3d sum = Vector3d::Zero();
+      int found = 0;
+      for (int w : nb)
+        if (curve_of_edge(v, w) == owner_[v]) {
+          sum += x_[w];
+          ++found;
+        }
+      if (found != 2) continue;
+      target = proj_.onto_curve(owner_[v], 0.5 * sum);
+    }
+    // The full move, else halfway, else a quarter: the first that raises the smallest angle.
+    const double before = ring_min_angle(v, x_[v]);
+    for (double f : {1.0, 0.5, 0.25}) {
+      Vector3d p = x_[v] + f * (target - x_[v]);
+      if (f != 1.0) p = kind_[v] == Kind::Surface ? proj_.onto_patch(owner_[v], p) : proj_.onto_curve(owner_[v], p);
+      if (!(ring_min_angle(v, p) > before)) continue;
+      if (!move_keeps_normals(v, p, vt_[v], {}) || !keeps_represented(v, p)) continue;
+      collect_moved(vt_[v], {}, v, p, v);
+      if (would_intersect(vt_[v])) continue;
+      x_[v] = p;
+      for (int t : vt_[v]) index_triangle(t);
+      ++moved;
+      break;
+    }
+  }
+  return moved;
 }
 
 bool RemeshComplex::match_count(std::size_t target) {
@@ -476,6 +604,7 @@ bool RemeshComplex::match_count(std::size_t target) {
     else
       std::sort(ranked.begin(), ranked.end(), [](const auto& p, const auto& q) { return p.first > q.first || (p.first == q.first && p.second < q.second); });
     const std::size_t before = alive_vertices_;
+    rebuild_grid();
     std::vector<char> touched(x_.size(), 0);  // edges ranked before this round's splits
     for (const auto& r : ranked) {
       if (alive_vertices_ == target) break;
@@ -489,8 +618,7 @@ bool RemeshComplex::match_count(std::size_t target) {
   return alive_vertices_ == target;
 }
 
-TriSurface RemeshComplex::result(const TriSurface& in) {
-  result_to_internal_.clear();
+TriSurface RemeshComplex::result(const TriSurface& in) const {
   TriSurface out;
   out.tissue_names = in.tissue_names;
   std::vector<int> index(x_.size(), -1);
@@ -502,7 +630,6 @@ TriSurface RemeshComplex::result(const TriSurface& in) {
   for (std::size_t t = 0; t < tri_.size(); ++t) {
     if (!tri_alive_[t]) continue;
     out.triangles.push_back({index[tri_[t][0]], index[tri_[t][1]], index[tri_[t][2]]});
-    result_to_internal_.push_back(static_cast<int>(t));
     out.labels.push_back(proj_.patches().pair_of_patch[patch_[t]]);
   }
   // Junction polylines: chain each curve's edges, from an end (open) or its lowest vertex (closed).
@@ -539,5 +666,6 @@ TriSurface RemeshComplex::result(const TriSurface& in) {
   }
   return out;
 }
+
 
 }  // namespace tissuemesh

@@ -14,20 +14,28 @@
 //             one-ring weighted by area / h^2 (a discrete centroidal Voronoi step, Lloyd on the
 //             surface), tangentially, then onto its patch of the reference surface; a curve
 //             vertex to the weighted midpoint of its two curve neighbours, then onto its junction.
+//   smooth_poor  the vertices of triangles with an angle under a threshold move towards the mean of
+//             their neighbours (or halfway, or a quarter), onto their patch or junction, when that
+//             raises the smallest angle around them.
 // Every operation keeps the patch labels, the orientation and the junction polylines (their
 // vertices and edges are replaced along the same curve), and refuses a move that flips a
-// triangle. Shape: each vertex carries the input vertices collapsed into it, and a collapse or
-// relaxation move is refused when one of them would end up farther than the approximation bound
-// (max(max_deviation_mm, L/4)) from the triangles around it, or when a changed triangle would leave
-// its patch by more than that bound or face away from it (a triangle bridging the two sides of a
-// thin sheet); split midpoints and relaxed points that would project onto the far side of a thin
-// sheet are refused too. Refinement balls (refine_around) shrink s locally. Deterministic: every
-// sweep visits triangles and vertices in index order. Not parallel.
+// triangle. Validity: an operation is refused when one of the triangles it creates would intersect
+// another one or any live triangle of the complex (exact predicates, mesher/triangle_intersection.h;
+// candidates from a grid of triangle boxes, mesher/triangle_grid.h), so an intersection-free input
+// stays intersection free at any budget: thin sheets keep the vertices they need. Shape: each
+// vertex carries the input vertices collapsed into it, and a collapse or relaxation move is refused
+// when one of them would end up farther than the approximation bound (max(max_deviation_mm, L/4))
+// from the triangles around it, or when a changed triangle would leave its patch by more than that
+// bound or face away from it (a triangle bridging the two sides of a thin sheet); split midpoints
+// and relaxed points that would project onto the far side of a thin sheet are refused too.
+// Deterministic: every sweep visits triangles and vertices in index order. Not parallel.
 #pragma once
 
 #include "core/tri_surface.h"
 #include "mesher/surface_projection.h"
 #include "mesher/surface_remesh.h"
+#include "mesher/triangle_grid.h"
+#include "mesher/triangle_intersection.h"
 
 #include <Eigen/Core>
 
@@ -61,28 +69,22 @@ class RemeshComplex {
   std::size_t flip_all();
   void relax();
 
+  /// Angle-improving smoothing of the vertices of triangles with an angle under `min_angle_rad`
+  /// (header comment); returns the number of vertices moved.
+  std::size_t smooth_poor(double min_angle_rad);
+
   /// Collapses the relatively shortest or splits the relatively longest edges until the vertex
   /// count is `target`; false when it cannot get there (every candidate refused, even with the
   /// approximation bound loosened by 1.5x per stuck round).
   bool match_count(std::size_t target);
 
-  /// Starts a refinement round: its balls halve the size of the rounds before, not each other's.
-  void begin_refinement() { balls_before_ = balls_.size(); }
-  /// Halves the size inside a ball around triangle `result_triangle` of the last result().
-  void refine_around(int result_triangle);
-
   /// The live mesh, compacted, with its junction polylines chained again (labels and tissue names
   /// from `in`). Throws MeshingError if a junction no longer forms one polyline (a bug).
-  TriSurface result(const TriSurface& in);
+  TriSurface result(const TriSurface& in) const;
 
  private:
   using Vector3d = Eigen::Vector3d;
   enum class Kind : char { Surface, Curve, Corner };
-  struct Ball {
-    Vector3d centre;
-    double radius;
-    double factor;
-  };
 
   /// The approximation bound in force: the caller's floor, or a quarter of the edge length when
   /// that is larger (a coarse budget cannot follow the surface to within a voxel); grown by
@@ -90,8 +92,6 @@ class RemeshComplex {
   double deviation() const;
   double s(const Vector3d& p) const;
   double h(const Vector3d& p) const { return L * s(p); }
-  /// The smallest factor of the first `count` refinement balls containing p (1 outside all).
-  double ball_factor(const Vector3d& p, std::size_t count) const;
   /// Length of edge (a, b) relative to h at its midpoint.
   double relative_length(int a, int b) const { return (x_[a] - x_[b]).norm() / h(0.5 * (x_[a] + x_[b])); }
 
@@ -111,6 +111,25 @@ class RemeshComplex {
   /// with v moved to p (relaxation must not shave off a tip that collapses left to v).
   bool keeps_represented(int v, const Vector3d& p) const;
 
+  /// A triangle an operation would create: vertex ids (a new vertex: an id not yet in use) and points.
+  struct NewTriangle {
+    std::array<int, 3> v;
+    TrianglePoints p;
+  };
+  /// Triangle t with vertex v moved to p and renamed `id`.
+  NewTriangle moved_triangle(int t, int v, const Vector3d& p, int id) const;
+  /// Fills created_ with the triangles of `tris` (skipping `skip`) with v moved to p, renamed id.
+  void collect_moved(const std::vector<int>& tris, const std::vector<int>& skip, int v, const Vector3d& p, int id);
+  /// True when a triangle of created_ would intersect another of them or a live triangle not in
+  /// `replaced` (the ones the operation removes or changes).
+  bool would_intersect(const std::vector<int>& replaced);
+  /// Smallest angle of v's triangles with v at p (radians).
+  double ring_min_angle(int v, const Vector3d& p) const;
+  /// Enters triangle t's current box in the grid (after it was created or changed).
+  void index_triangle(int t);
+  /// Rebuilds the grid from the live triangles (start of every sweep: drops stale entries).
+  void rebuild_grid();
+
   /// Splits edge (a, b); false (nothing changed) when its midpoint would project onto the far side
   /// of a thin sheet of tissue.
   bool split(int a, int b);
@@ -129,9 +148,11 @@ class RemeshComplex {
   double slack_ = 1.0;  ///< deviation() multiplier, raised by match_count when stuck
   std::vector<Vector3d> reference_;             ///< the input vertices
   std::vector<std::vector<int>> represents_;    ///< per vertex: input vertices collapsed into it
-  std::size_t balls_before_ = 0;
-  std::vector<Ball> balls_;               ///< local refinement where the result self-intersected
-  std::vector<int> result_to_internal_;   ///< triangle of the last result() -> internal index
+  TriangleGrid grid_;
+  std::vector<unsigned> seen_;  ///< per triangle: stamp of the last would_intersect() visit
+  unsigned stamp_ = 0;
+  std::vector<int> candidates_;
+  std::vector<NewTriangle> created_;  ///< scratch: the triangles an operation would create
   std::vector<Vector3d> x_;
   std::vector<Kind> kind_;
   std::vector<int> owner_;  ///< patch (surface vertex), curve (curve vertex), -1 (corner)

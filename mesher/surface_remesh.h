@@ -5,10 +5,12 @@
 // shape guards), against a size field h(x) = L s(x). The vertex budget: L starts from the area (an
 // equilateral mesh of area A at edge h has about 2A / (sqrt(3) h^2) vertices), is rescaled by the
 // measured count after the first rounds, and a final pass collapses the shortest or splits the
-// longest edges (relative to h) until the count is exactly the budget. Validity: the result is
-// checked (mesher/surface_checks.h); where a tissue's boundary self-intersects, the size is halved
-// in a ball around the intersecting triangles and the rounds and the budget pass repeat (at most
-// 6 times; the last checks are returned, the caller decides). Deterministic. Not parallel.
+// longest edges (relative to h) until the count is exactly the budget. Polish: flips, relaxation,
+// then angle-improving smoothing of the vertices of triangles with an angle under 30 degrees.
+// Validity: no operation is applied that would make two triangles intersect (an exact guard,
+// mesher/remesh_complex.h), so a valid input gives an intersection-free result at any budget; the
+// result is checked again (mesher/surface_checks.h) and the checks returned, the caller decides.
+// Deterministic. Not parallel.
 #pragma once
 
 #include "core/progress.h"
@@ -39,6 +41,7 @@ struct RemeshResult {
   SurfaceCheckReport checks;    ///< mesher/surface_checks.h of `surface`
   double edge_length_mm = 0.0;  ///< L, the size where s = 1, after the budget rescaling
   std::size_t splits = 0, collapses = 0, flips = 0;
+  std::size_t angle_moves = 0;  ///< vertex moves of the angle-improving smoothing
 };
 
 /// `input` must be valid and closed per tissue (mesher/surface_checks.h), `projection` built on it.

@@ -49,6 +49,22 @@ TEST(SurfaceRemesh, NestedSpheresMeetTheBudgetClosedAndCloseToTheInput) {
   EXPECT_LE(d.symmetric_mm(), kRemeshHausdorffVoxelDiagonals * diagonal);
 }
 
+TEST(SurfaceRemesh, ThinShellStaysIntersectionFreeAtCoarseBudgets) {
+  // The shell's two sides are 1 mm apart and the edges at these budgets 3-10 mm long. Without the
+  // intersection guard (mutation check) the two sides cut through each other at budget 20.
+  const LabelImage img = thin_shell();
+  const TriSurface input = extract(img, 2).surface;
+  const SurfaceProjection on_input(input);
+  for (int budget : {20, 40, 100}) {
+    const RemeshResult r = remesh(input, on_input, budget, img.spacing.norm());
+    EXPECT_EQ(r.surface.points.size(), static_cast<std::size_t>(budget));
+    const SurfaceCheckReport checks = check_surface(r.surface);
+    EXPECT_TRUE(checks.valid()) << "budget " << budget;
+    for (const auto& t : checks.tissues) EXPECT_EQ(t.intersecting_pairs, 0) << t.name << ", budget " << budget;
+    EXPECT_EQ(pairs(r.surface), pairs(input));
+  }
+}
+
 TEST(SurfaceRemesh, JunctionPolylinesSurviveOnTheInputJunctions) {
   const LabelImage img = three_boxes();
   const SurfaceExtraction ex = extract(img, 3);

@@ -1,5 +1,6 @@
 // Small generated label images and their extraction, shared by the surface-pipeline tests
-// (issue #5): nested spheres on anisotropic voxels and three touching boxes with a triple junction.
+// (issue #5): nested spheres on anisotropic voxels, a thin shell, and three touching boxes with a
+// triple junction.
 #pragma once
 
 #include "core/label_image.h"
@@ -32,6 +33,15 @@ inline LabelImage nested_spheres() {
   return make_image({26, 26, 18}, spacing, [&](int i, int j, int k) {
     const Eigen::Vector3d p((i - 12.5) * spacing[0], (j - 12.5) * spacing[1], (k - 8.5) * spacing[2]);
     return p.norm() < 5.0 ? 2 : p.norm() < 9.0 ? 1 : 0;
+  });
+}
+
+/// A ball (id 1, radius 6 mm) in a shell one voxel thick (id 2, out to 7 mm): the two sides of the
+/// shell are closer than the edge length of any coarse budget.
+inline LabelImage thin_shell() {
+  return make_image({20, 20, 20}, {1.0, 1.0, 1.0}, [](int i, int j, int k) {
+    const double r = Eigen::Vector3d(i - 9.5, j - 9.5, k - 9.5).norm();
+    return r < 6.0 ? 1 : r < 7.0 ? 2 : 0;
   });
 }
 
