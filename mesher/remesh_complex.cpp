@@ -23,6 +23,9 @@ constexpr double kMinNormalTurnCos = 0.5;
 /// Flips keep the surface shape: the new pair of triangles must be at least this flat (cos 25 deg),
 /// or no less flat than the old pair.
 constexpr double kFlipFlatCos = 0.906;
+/// The intersection guard's grid is rebuilt when the mean triangle size has drifted this far from
+/// its cell size (coarsening grows triangles ~3x over the first rounds).
+constexpr double kGridDrift = 1.5;
 /// The approximation bound is at least this fraction of the edge length L.
 constexpr double kDeviationPerEdge = 0.25;
 
@@ -247,6 +250,8 @@ void RemeshComplex::index_triangle(int t) { grid_.insert(t, box_of({x_[tri_[t][0
 
 void RemeshComplex::rebuild_grid() {
   // Cells about the size of a triangle: a query then visits a few cells of a few triangles each.
+  // Every change is entered as it happens, so the grid is only rebuilt when the triangles' size
+  // has drifted by more than a factor kGridDrift from the cell size.
   double extent = 0.0;
   std::size_t n = 0;
   for (std::size_t t = 0; t < tri_.size(); ++t)
@@ -254,7 +259,10 @@ void RemeshComplex::rebuild_grid() {
       extent += box_of({x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]}).sizes().maxCoeff();
       ++n;
     }
-  grid_.reset(n > 0 && extent > 0.0 ? extent / static_cast<double>(n) : 1.0);
+  const double cell = n > 0 && extent > 0.0 ? extent / static_cast<double>(n) : 1.0;
+  if (grid_cell_ > 0.0 && cell < kGridDrift * grid_cell_ && cell > grid_cell_ / kGridDrift) return;
+  grid_cell_ = cell;
+  grid_.reset(cell);
   for (std::size_t t = 0; t < tri_.size(); ++t)
     if (tri_alive_[t]) index_triangle(static_cast<int>(t));
 }
@@ -385,6 +393,7 @@ bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
   // Apply.
   for (int t : ts) {
     tri_alive_[t] = 0;
+    grid_.remove(t);
     for (int w : tri_[t]) vt_[w].erase(std::remove(vt_[w].begin(), vt_[w].end(), t), vt_[w].end());
   }
   for (int t : vt_[a]) {

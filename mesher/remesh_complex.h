@@ -127,7 +127,7 @@ class RemeshComplex {
   double ring_min_angle(int v, const Vector3d& p) const;
   /// Enters triangle t's current box in the grid (after it was created or changed).
   void index_triangle(int t);
-  /// Rebuilds the grid from the live triangles (start of every sweep: drops stale entries).
+  /// Start of every sweep: rebuilds the grid when the triangle size has drifted from its cells.
   void rebuild_grid();
 
   /// Splits edge (a, b); false (nothing changed) when its midpoint would project onto the far side
@@ -149,6 +149,7 @@ class RemeshComplex {
   std::vector<Vector3d> reference_;             ///< the input vertices
   std::vector<std::vector<int>> represents_;    ///< per vertex: input vertices collapsed into it
   TriangleGrid grid_;
+  double grid_cell_ = 0.0;      ///< the grid's cell size (0: not built yet)
   std::vector<unsigned> seen_;  ///< per triangle: stamp of the last would_intersect() visit
   unsigned stamp_ = 0;
   std::vector<int> candidates_;

@@ -1,5 +1,6 @@
 #include "mesher/triangle_grid.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tissuemesh {
@@ -7,9 +8,10 @@ namespace tissuemesh {
 void TriangleGrid::reset(double cell_mm) {
   inverse_cell_ = 1.0 / cell_mm;
   cells_.clear();
+  range_.clear();
 }
 
-std::uint64_t TriangleGrid::key(int i, int j, int k) const {
+std::uint64_t TriangleGrid::key(int i, int j, int k) {
   // 21 bits per axis, offset to stay positive: +-1M cells, far beyond any image.
   constexpr std::int64_t kOffset = 1 << 20;
   return (static_cast<std::uint64_t>(i + kOffset) << 42) | (static_cast<std::uint64_t>(j + kOffset) << 21) |
@@ -21,11 +23,28 @@ Eigen::Vector3i TriangleGrid::cell_of(const Eigen::Vector3d& p) const {
           static_cast<int>(std::floor(p[2] * inverse_cell_))};
 }
 
+void TriangleGrid::remove(int id) {
+  if (id >= static_cast<int>(range_.size()) || !range_[id].present) return;
+  const Range& r = range_[id];
+  for (int i = r.lo[0]; i <= r.hi[0]; ++i)
+    for (int j = r.lo[1]; j <= r.hi[1]; ++j)
+      for (int k = r.lo[2]; k <= r.hi[2]; ++k) {
+        std::vector<int>& cell = cells_[key(i, j, k)];
+        cell.erase(std::find(cell.begin(), cell.end(), id));
+      }
+  range_[id].present = false;
+}
+
 void TriangleGrid::insert(int id, const Eigen::AlignedBox3d& box) {
-  const Eigen::Vector3i lo = cell_of(box.min()), hi = cell_of(box.max());
-  for (int i = lo[0]; i <= hi[0]; ++i)
-    for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int k = lo[2]; k <= hi[2]; ++k) cells_[key(i, j, k)].push_back(id);
+  remove(id);
+  if (id >= static_cast<int>(range_.size())) range_.resize(id + 1);
+  Range& r = range_[id];
+  r.lo = cell_of(box.min());
+  r.hi = cell_of(box.max());
+  r.present = true;
+  for (int i = r.lo[0]; i <= r.hi[0]; ++i)
+    for (int j = r.lo[1]; j <= r.hi[1]; ++j)
+      for (int k = r.lo[2]; k <= r.hi[2]; ++k) cells_[key(i, j, k)].push_back(id);
 }
 
 void TriangleGrid::query(const Eigen::AlignedBox3d& box, std::vector<int>& out) const {

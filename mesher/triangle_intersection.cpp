@@ -13,6 +13,13 @@ Point point(const Eigen::Vector3d& p) { return Point(p[0], p[1], p[2]); }
 
 Kernel::Triangle_3 triangle(const TrianglePoints& t) { return {point(t[0]), point(t[1]), point(t[2])}; }
 
+/// True when p and q lie strictly on the same side of the plane of t (exact): the segment pq then
+/// cannot meet t. A cheap exact rejection before CGAL's general segment and triangle tests.
+bool strictly_one_side(const Kernel::Triangle_3& t, const Point& p, const Point& q) {
+  const CGAL::Orientation a = CGAL::orientation(t[0], t[1], t[2], p);
+  return a != CGAL::COPLANAR && a == CGAL::orientation(t[0], t[1], t[2], q);
+}
+
 }  // namespace
 
 bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, const TrianglePoints& b,
@@ -27,14 +34,18 @@ bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, 
         ++shared;
       }
   if (shared == 3) return true;
-  if (shared == 0) return CGAL::do_intersect(triangle(a), triangle(b));
+  const Kernel::Triangle_3 ta = triangle(a), tb = triangle(b);
+  if (shared == 0) {
+    if (strictly_one_side(ta, tb[0], tb[1]) && strictly_one_side(ta, tb[1], tb[2])) return false;
+    return CGAL::do_intersect(ta, tb);
+  }
   if (shared == 1) {
     int i = 0;
     while (in_b[i] < 0) ++i;
     const int j = in_b[i];
-    const Kernel::Segment_3 opposite_a(point(a[(i + 1) % 3]), point(a[(i + 2) % 3]));
-    const Kernel::Segment_3 opposite_b(point(b[(j + 1) % 3]), point(b[(j + 2) % 3]));
-    return CGAL::do_intersect(opposite_a, triangle(b)) || CGAL::do_intersect(opposite_b, triangle(a));
+    const Point a1 = ta[(i + 1) % 3], a2 = ta[(i + 2) % 3], b1 = tb[(j + 1) % 3], b2 = tb[(j + 2) % 3];
+    const bool a_clear = strictly_one_side(tb, a1, a2) || !CGAL::do_intersect(Kernel::Segment_3(a1, a2), tb);
+    return !a_clear || !(strictly_one_side(ta, b1, b2) || !CGAL::do_intersect(Kernel::Segment_3(b1, b2), ta));
   }
   // A shared edge (p, q); r and s the other vertices.
   int i = 0;
