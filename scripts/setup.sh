@@ -15,6 +15,7 @@ PACKAGES=(
   nlohmann-json3-dev                            # JSON reports and run records
   zlib1g-dev                                    # gzip-compressed NIfTI / NRRD
   libgmsh-dev                                   # Gmsh 4.8 SDK: .msh export
+  libtet1.5-dev                                 # TetGen 1.5: the cross-check volume mesher
   calculix-ccx                                  # CalculiX 2.20: runs the exported .inp in tests
   libsuitesparse-dev                            # CHOLMOD: the built-in solver's sparse Cholesky
   libopenblas0-pthread                          # optimised BLAS for CHOLMOD's supernodes (the

@@ -1,0 +1,55 @@
+// TetGen backend (issue #6, step 2): tetrahedra from a multi-material surface complex with
+// TetGen 1.5, the cross-check mesher for the CGAL volume mesh of the same surface.
+//
+// Input: a valid TriSurface (every tissue's boundary closed, oriented and intersection free,
+// every interface stored once; mesher/surface_checks.h). It becomes one piecewise linear complex:
+// every triangle a facet (its patch pair p|q as the facet marker 1000 p + q), one region per
+// tissue with a seed point inside it, its tissue id as the region attribute and its maximum tet
+// volume. Switches, built from the typed parameters only: p (PLC), q<ratio>/<dihedral> (quality),
+// A (region attributes), a (per-region volume bounds), Y (keep every input facet as it is: the
+// boundary and every interface are exactly the input triangles, so the tet mesh and the surface
+// agree face for face and enclose the same volumes; without Y, TetGen flips and splits nearly
+// coplanar boundary triangles and moves the surface by ~1e-6 of the volume), z (0-based),
+// Q (quiet). With Y, a tet at the surface whose split point would land on the surface stays
+// unsplit, so the volume bound holds inside a tissue but not for every tet touching the surface.
+// Tets TetGen leaves in no region (cavities of "outside") are dropped.
+//
+// Seeds: for each tissue, its largest boundary triangle; the seed is halfway between that
+// triangle's centroid and the first other triangle hit by a ray from it into the tissue, so it
+// lies strictly inside the tissue whatever its thickness.
+//
+// Errors: TetGen's failures (self-intersecting or degenerate input, which a valid surface does
+// not have) become MeshingError with TetGen's error code meaning. Deterministic.
+#pragma once
+
+#include "core/progress.h"
+#include "core/tet_mesh.h"
+#include "core/tri_surface.h"
+
+#include <map>
+#include <string>
+
+namespace tissuemesh {
+
+struct TetgenParams {
+  /// Largest circumradius / shortest edge of a tet (TetGen's -q first value, > 1; 2 is the
+  /// classical bound with guaranteed termination).
+  double radius_edge_ratio = 2.0;
+  /// Smallest dihedral angle TetGen aims for (-q second value, degrees; 0 = TetGen's default).
+  double min_dihedral_deg = 0.0;
+  /// Maximum tet volume per tissue name, mm^3; tissues not listed get the volume of the regular
+  /// tet whose edge is the mean edge length of the tissue's boundary triangles.
+  std::map<std::string, double> max_volume_mm3;
+};
+
+struct TetgenResult {
+  TetMesh mesh;
+  std::string switches;  ///< the switches TetGen ran with, for the report
+  std::size_t steiner_points = 0;  ///< nodes TetGen added (mesh nodes - surface vertices used)
+};
+
+/// Meshes `surface` (see the header comment). Throws InputError for bad parameters (naming the
+/// key) and MeshingError when TetGen fails.
+TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, Progress& progress);
+
+}  // namespace tissuemesh
