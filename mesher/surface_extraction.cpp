@@ -1,6 +1,7 @@
 #include "mesher/surface_extraction.h"
 
 #include "core/errors.h"
+#include "mesher/junction_tracing.h"
 #include "mesher/surface_checks.h"
 
 #include <Eigen/LU>  // determinant()
@@ -36,7 +37,6 @@ int distinct(std::array<int, 4> v) {
   return static_cast<int>(std::unique(v.begin(), v.end()) - v.begin());
 }
 
-enum class VertexKind : std::uint8_t { Surface, Curve, Corner };
 
 /// Vertices on voxel corners (lattice points) and the quads between them.
 struct NetBuilder {
@@ -143,37 +143,6 @@ std::vector<std::vector<int>> quad_neighbours(std::size_t n, const std::vector<s
     a.erase(std::unique(a.begin(), a.end()), a.end());
   }
   return adj;
-}
-
-/// Polylines of the junction graph: open chains between corners, then closed loops.
-std::vector<std::vector<int>> trace_junctions(const std::vector<std::vector<int>>& adj,
-                                              const std::vector<VertexKind>& kind) {
-  std::set<std::pair<int, int>> used;
-  auto take = [&](int a, int b) { return used.insert({std::min(a, b), std::max(a, b)}).second; };
-  std::vector<std::vector<int>> lines;
-  auto follow = [&](int start, int next) {
-    std::vector<int> line{start};
-    int prev = start, cur = next;
-    while (true) {
-      line.push_back(cur);
-      if (cur == start || kind[static_cast<std::size_t>(cur)] != VertexKind::Curve) break;
-      const auto& n = adj[static_cast<std::size_t>(cur)];
-      const int after = n[0] == prev ? n[1] : n[0];
-      if (!take(cur, after)) break;
-      prev = cur;
-      cur = after;
-    }
-    lines.push_back(std::move(line));
-  };
-  for (std::size_t v = 0; v < adj.size(); ++v)
-    if (kind[v] == VertexKind::Corner)
-      for (int w : adj[v])
-        if (take(static_cast<int>(v), w)) follow(static_cast<int>(v), w);
-  for (std::size_t v = 0; v < adj.size(); ++v)
-    if (kind[v] == VertexKind::Curve)
-      for (int w : adj[v])
-        if (take(static_cast<int>(v), w)) follow(static_cast<int>(v), w);
-  return lines;
 }
 
 /// Taubin relaxation in voxel-index coordinates with every vertex clamped to its voxel-centre box.

@@ -5,10 +5,13 @@
 #define TETLIBRARY
 #include <tetgen.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 namespace tissuemesh {
@@ -32,40 +35,84 @@ double ray_hit(const Vector3d& o, const Vector3d& d, const Vector3d& a, const Ve
   return t > 0.0 ? t : std::numeric_limits<double>::infinity();
 }
 
-/// A point strictly inside tissue `id` (header comment), and the mean edge of its boundary.
-Vector3d seed_inside(const TriSurface& s, int id, double& mean_edge) {
+/// The first triangle hit by the ray from `origin` along `direction`, skipping triangle `skip`:
+/// the ray parameter, or +infinity.
+double first_hit(const TriSurface& s, const Vector3d& origin, const Vector3d& direction, int skip) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t u = 0; u < s.triangles.size(); ++u) {
+    if (static_cast<int>(u) == skip) continue;
+    const auto& w = s.triangles[u];
+    nearest = std::min(nearest, ray_hit(origin, direction, s.points[w[0]], s.points[w[1]], s.points[w[2]]));
+  }
+  return nearest;
+}
+
+/// Seed points strictly inside tissue `id`, one per connected piece of its boundary (a tissue in
+/// several pieces, or with cavities, needs every piece seeded: TetGen drops unseeded regions), and
+/// the mean edge of its boundary (header comment).
+std::vector<Vector3d> seeds_inside(const TriSurface& s, int id, double& mean_edge) {
   std::vector<int> ids;
   std::vector<char> reversed;
   s.tissue_boundary(id, ids, reversed);
-  if (ids.empty()) throw InputError("tissue '" + s.tissue_names.at(id - 1) + "' has no boundary triangles");
-  int best = -1;
-  double best_area = -1.0, edges = 0.0;
+  if (ids.empty()) return {};  // a tissue absent from this surface: nothing to seed
+  // Pieces: triangles joined through shared edges (union-find, smallest index as the root).
+  std::vector<int> parent(ids.size());
+  for (std::size_t k = 0; k < ids.size(); ++k) parent[k] = static_cast<int>(k);
+  auto root = [&](int k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  std::vector<std::tuple<int, int, int>> edges;  // (min vertex, max vertex, entry)
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const auto& t = s.triangles[ids[k]];
+    for (int e = 0; e < 3; ++e)
+      edges.emplace_back(std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3]), static_cast<int>(k));
+  }
+  std::sort(edges.begin(), edges.end());
+  // Only manifold edges join: where pieces of a tissue touch along an edge (4 triangles), its two
+  // sides may be different pieces of volume, and each must get its own seed.
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && std::get<0>(edges[j]) == std::get<0>(edges[i]) && std::get<1>(edges[j]) == std::get<1>(edges[i]))
+      ++j;
+    if (j - i == 2) {
+      const int a = root(std::get<2>(edges[i])), b = root(std::get<2>(edges[i + 1]));
+      parent[std::max(a, b)] = std::min(a, b);
+    }
+    i = j;
+  }
+  // Per piece: its largest triangle; the seed halfway to the next surface along the inward normal.
+  std::vector<int> best(ids.size(), -1);
+  std::vector<double> best_area(ids.size(), -1.0);
+  double edge_sum = 0.0;
   for (std::size_t k = 0; k < ids.size(); ++k) {
     const auto& t = s.triangles[ids[k]];
     const Vector3d &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
-    edges += (b - a).norm() + (c - b).norm() + (a - c).norm();
+    edge_sum += (b - a).norm() + (c - b).norm() + (a - c).norm();
     const double area = 0.5 * (b - a).cross(c - a).norm();
-    if (area > best_area) {
-      best_area = area;
-      best = static_cast<int>(k);
+    const int r = root(static_cast<int>(k));
+    if (area > best_area[r]) {
+      best_area[r] = area;
+      best[r] = static_cast<int>(k);
     }
   }
-  mean_edge = edges / (3.0 * static_cast<double>(ids.size()));
-  const auto& t = s.triangles[ids[best]];
-  const Vector3d &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
-  const Vector3d centroid = (a + b + c) / 3.0;
-  // The stored normal points from p into q: into the tissue when the winding is reversed (q = id).
-  Vector3d inward = (b - a).cross(c - a).normalized();
-  if (!reversed[best]) inward = -inward;
-  double nearest = std::numeric_limits<double>::infinity();
-  for (std::size_t u = 0; u < s.triangles.size(); ++u) {
-    if (static_cast<int>(u) == ids[best]) continue;
-    const auto& w = s.triangles[u];
-    nearest = std::min(nearest, ray_hit(centroid, inward, s.points[w[0]], s.points[w[1]], s.points[w[2]]));
+  mean_edge = edge_sum / (3.0 * static_cast<double>(ids.size()));
+  std::vector<Vector3d> seeds;
+  for (std::size_t r = 0; r < ids.size(); ++r) {
+    if (best[r] < 0) continue;
+    const int k = best[r];
+    const auto& t = s.triangles[ids[k]];
+    const Vector3d &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
+    // The stored normal points from p into q: into the tissue when the winding is reversed (q = id).
+    Vector3d inward = (b - a).cross(c - a).normalized();
+    if (!reversed[k]) inward = -inward;
+    const Vector3d centroid = (a + b + c) / 3.0;
+    const double hit = first_hit(s, centroid, inward, ids[k]);
+    if (!std::isfinite(hit))
+      throw MeshingError("tissue '" + s.tissue_names.at(id - 1) + "': no seed point found (its boundary is not closed)");
+    seeds.push_back(centroid + 0.5 * hit * inward);
   }
-  if (!std::isfinite(nearest))
-    throw MeshingError("tissue '" + s.tissue_names.at(id - 1) + "': no seed point found (its boundary is not closed)");
-  return centroid + 0.5 * nearest * inward;
+  return seeds;
 }
 
 std::string tetgen_failure(int code) {
@@ -117,22 +164,20 @@ TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, 
     in.facetmarkerlist[t] = 1000 * surface.labels[t][0] + surface.labels[t][1];
   }
   const int n_tissues = static_cast<int>(surface.tissue_names.size());
-  in.numberofregions = n_tissues;
-  in.regionlist = new REAL[5 * n_tissues];
+  std::vector<std::array<double, 5>> regions;  // seed x, y, z, tissue id, maximum volume
   for (int id = 1; id <= n_tissues; ++id) {
     double mean_edge = 0.0;
-    const Vector3d seed = seed_inside(surface, id, mean_edge);
+    const std::vector<Vector3d> seeds = seeds_inside(surface, id, mean_edge);
     const auto it = params.max_volume_mm3.find(surface.tissue_names[id - 1]);
     // The regular tetrahedron of edge e has volume e^3 / (6 sqrt 2).
     const double max_volume = it != params.max_volume_mm3.end() ? it->second
                                                                  : std::pow(mean_edge, 3) / (6.0 * std::sqrt(2.0));
-    REAL* r = in.regionlist + 5 * (id - 1);
-    r[0] = seed[0];
-    r[1] = seed[1];
-    r[2] = seed[2];
-    r[3] = id;
-    r[4] = max_volume;
+    for (const Vector3d& p : seeds) regions.push_back({p[0], p[1], p[2], static_cast<double>(id), max_volume});
   }
+  in.numberofregions = static_cast<int>(regions.size());
+  in.regionlist = new REAL[5 * regions.size()];
+  for (std::size_t r = 0; r < regions.size(); ++r)
+    for (int i = 0; i < 5; ++i) in.regionlist[5 * r + i] = regions[r][i];
 
   TetgenResult result;
   {

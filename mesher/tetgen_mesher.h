@@ -14,9 +14,10 @@
 // unsplit, so the volume bound holds inside a tissue but not for every tet touching the surface.
 // Tets TetGen leaves in no region (cavities of "outside") are dropped.
 //
-// Seeds: for each tissue, its largest boundary triangle; the seed is halfway between that
-// triangle's centroid and the first other triangle hit by a ray from it into the tissue, so it
-// lies strictly inside the tissue whatever its thickness.
+// Seeds: every connected piece of a tissue's boundary (an island, a cavity's wall) gets one, so
+// no part of a tissue is left without its region attribute (TetGen would drop it silently): from
+// the piece's largest triangle, halfway to the first other triangle hit by a ray into the tissue,
+// so it lies strictly inside the tissue whatever its thickness.
 //
 // Errors: TetGen's failures (self-intersecting or degenerate input, which a valid surface does
 // not have) become MeshingError with TetGen's error code meaning. Deterministic.
