@@ -13,10 +13,6 @@ namespace {
 
 using Eigen::Vector3d;
 
-/// Botsch & Kobbelt's thresholds: splitting above 4/3 h and collapsing below 4/5 h leaves edges
-/// whose lengths average about h and never oscillate between a split and a collapse.
-constexpr double kSplitAbove = 4.0 / 3.0;
-constexpr double kCollapseBelow = 4.0 / 5.0;
 /// A collapse, flip or relaxation move is refused when a triangle's normal turns by more than
 /// this (cos 60 deg): it would fold the surface or leave the reference shape's tangent plane.
 constexpr double kMinNormalTurnCos = 0.5;
@@ -222,6 +218,26 @@ double RemeshComplex::ring_min_angle(int v, const Vector3d& p) const {
     m = std::min(m, min_angle(q.p[0], q.p[1], q.p[2]));
   }
   return m;
+}
+
+bool RemeshComplex::tangential_target(int v, const Vector3d& goal, Vector3d& target) const {
+  Vector3d n = Vector3d::Zero();
+  for (int t : vt_[v]) n += area_vector(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]);
+  if (n.norm() == 0.0) return false;
+  n.normalize();
+  const Vector3d d = goal - x_[v];
+  Vector3d n_ref;
+  target = proj_.onto_patch(owner_[v], x_[v] + d - n.dot(d) * n, &n_ref);
+  return n_ref.dot(n) > 0.0;  // else the far side of a thin sheet: stay
+}
+
+bool RemeshComplex::try_move(int v, const Vector3d& p) {
+  if (!move_keeps_normals(v, p, vt_[v], {}) || !keeps_represented(v, p)) return false;
+  collect_moved(vt_[v], {}, v, p, v);
+  if (would_intersect(vt_[v])) return false;
+  x_[v] = p;
+  for (int t : vt_[v]) index_triangle(t);
+  return true;
 }
 
 bool RemeshComplex::would_intersect(const std::vector<int>& replaced) {
@@ -477,154 +493,6 @@ bool RemeshComplex::try_flip(int a, int b) {
   vt_[c].push_back(t2);
   ++flips;
   return true;
-}
-
-std::size_t RemeshComplex::split_long() {
-  rebuild_grid();
-  std::size_t n = 0;
-  for (const auto& e : edges())
-    if (edge_exists(e[0], e[1]) && relative_length(e[0], e[1]) > kSplitAbove && split(e[0], e[1])) ++n;
-  return n;
-}
-
-std::size_t RemeshComplex::collapse_short() {
-  rebuild_grid();
-  std::size_t n = 0;
-  for (const auto& e : edges())
-    if (edge_exists(e[0], e[1]) && relative_length(e[0], e[1]) < kCollapseBelow && collapse_either(e[0], e[1], kSplitAbove))
-      ++n;
-  return n;
-}
-
-std::size_t RemeshComplex::flip_all() {
-  rebuild_grid();
-  std::size_t n = 0;
-  for (const auto& e : edges())
-    if (edge_exists(e[0], e[1]) && try_flip(e[0], e[1])) ++n;
-  return n;
-}
-
-void RemeshComplex::relax() {
-  rebuild_grid();
-  std::vector<int> nb;
-  for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
-    if (!vertex_alive_[v] || kind_[v] == Kind::Corner) continue;
-    Vector3d target;
-    if (kind_[v] == Kind::Surface) {
-      Vector3d centroid = Vector3d::Zero(), n = Vector3d::Zero();
-      double weight = 0.0;
-      for (int t : vt_[v]) {
-        const Vector3d &a = x_[tri_[t][0]], &b = x_[tri_[t][1]], &c = x_[tri_[t][2]];
-        const Vector3d av = area_vector(a, b, c), g = (a + b + c) / 3.0;
-        const double st = s(g), w = av.norm() / (st * st);
-        centroid += w * g;
-        weight += w;
-        n += av;
-      }
-      if (!(weight > 0.0) || n.norm() == 0.0) continue;
-      n.normalize();
-      const Vector3d d = centroid / weight - x_[v];
-      Vector3d n_ref;
-      target = proj_.onto_patch(owner_[v], x_[v] + d - n.dot(d) * n, &n_ref);
-      if (n_ref.dot(n) <= 0.0) continue;  // the far side of a thin sheet: stay
-    } else {
-      neighbours(v, nb);
-      Vector3d sum = Vector3d::Zero();
-      double weight = 0.0;
-      int found = 0;
-      for (int w : nb) {
-        if (curve_of_edge(v, w) != owner_[v]) continue;
-        const Vector3d mid = 0.5 * (x_[v] + x_[w]);
-        const double st = s(mid), wt = (x_[w] - x_[v]).norm() / (st * st);
-        sum += wt * (0.5 * (mid + x_[v]));  // centroid of the half-segment towards w
-        weight += wt;
-        ++found;
-      }
-      if (found != 2 || !(weight > 0.0)) continue;
-      target = proj_.onto_curve(owner_[v], sum / weight);
-    }
-    if (!move_keeps_normals(v, target, vt_[v], {}) || !keeps_represented(v, target)) continue;
-    collect_moved(vt_[v], {}, v, target, v);
-    if (would_intersect(vt_[v])) continue;
-    x_[v] = target;
-    for (int t : vt_[v]) index_triangle(t);
-  }
-}
-
-std::size_t RemeshComplex::smooth_poor(double min_angle_rad) {
-  rebuild_grid();
-  std::vector<char> todo(x_.size(), 0);
-  for (std::size_t t = 0; t < tri_.size(); ++t)
-    if (tri_alive_[t] && min_angle(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]) < min_angle_rad)
-      for (int v : tri_[t]) todo[v] = 1;
-  std::size_t moved = 0;
-  std::vector<int> nb;
-  for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
-    if (!todo[v] || !vertex_alive_[v] || kind_[v] == Kind::Corner) continue;
-    neighbours(v, nb);
-    Vector3d target;
-    if (kind_[v] == Kind::Surface) {
-      Vector3d c = Vector3d::Zero(), n = Vector3d::Zero();
-      for (int w : nb) c += x_[w];
-      c /= static_cast<double>(nb.size());
-      for (int t : vt_[v]) n += area_vector(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]);
-      if (n.norm() == 0.0) continue;
-      n.normalize();
-      const Vector3d d = c - x_[v];
-      Vector3d n_ref;
-      target = proj_.onto_patch(owner_[v], x_[v] + d - n.dot(d) * n, &n_ref);
-      if (n_ref.dot(n) <= 0.0) continue;
-    } else {
-      Vector3d sum = Vector3d::Zero();
-      int found = 0;
-      for (int w : nb)
-        if (curve_of_edge(v, w) == owner_[v]) {
-          sum += x_[w];
-          ++found;
-        }
-      if (found != 2) continue;
-      target = proj_.onto_curve(owner_[v], 0.5 * sum);
-    }
-    // The full move, else halfway, else a quarter: the first that raises the smallest angle.
-    const double before = ring_min_angle(v, x_[v]);
-    for (double f : {1.0, 0.5, 0.25}) {
-      Vector3d p = x_[v] + f * (target - x_[v]);
-      if (f != 1.0) p = kind_[v] == Kind::Surface ? proj_.onto_patch(owner_[v], p) : proj_.onto_curve(owner_[v], p);
-      if (!(ring_min_angle(v, p) > before)) continue;
-      if (!move_keeps_normals(v, p, vt_[v], {}) || !keeps_represented(v, p)) continue;
-      collect_moved(vt_[v], {}, v, p, v);
-      if (would_intersect(vt_[v])) continue;
-      x_[v] = p;
-      for (int t : vt_[v]) index_triangle(t);
-      ++moved;
-      break;
-    }
-  }
-  return moved;
-}
-
-bool RemeshComplex::match_count(std::size_t target) {
-  for (int round = 0; round < 20 && alive_vertices_ != target; ++round) {
-    std::vector<std::pair<double, std::array<int, 2>>> ranked;
-    for (const auto& e : edges()) ranked.push_back({relative_length(e[0], e[1]), e});
-    const bool remove = alive_vertices_ > target;
-    if (remove)
-      std::sort(ranked.begin(), ranked.end());
-    else
-      std::sort(ranked.begin(), ranked.end(), [](const auto& p, const auto& q) { return p.first > q.first || (p.first == q.first && p.second < q.second); });
-    const std::size_t before = alive_vertices_;
-    rebuild_grid();
-    std::vector<char> touched(x_.size(), 0);  // edges ranked before this round's splits
-    for (const auto& r : ranked) {
-      if (alive_vertices_ == target) break;
-      const int a = r.second[0], b = r.second[1];
-      if (touched[a] || touched[b] || !edge_exists(a, b)) continue;
-      if (remove ? collapse_either(a, b, 2.0 * kSplitAbove) : split(a, b)) touched[a] = touched[b] = 1;
-    }
-    if (alive_vertices_ == before) slack_ *= 1.5;  // every candidate refused: loosen the bound
-  }
-  slack_ = 1.0;
-  return alive_vertices_ == target;
 }
 
 TriSurface RemeshComplex::result(const TriSurface& in) const {

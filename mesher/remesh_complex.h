@@ -123,6 +123,16 @@ class RemeshComplex {
   /// True when a triangle of created_ would intersect another of them or a live triangle not in
   /// `replaced` (the ones the operation removes or changes).
   bool would_intersect(const std::vector<int>& replaced);
+  /// Where a surface vertex v moving towards `goal` lands: the tangential part of the move (in
+  /// the plane of v's area-weighted normal) projected onto v's patch; false when v's triangles
+  /// have no normal or the projection lands on the far side of a thin sheet.
+  bool tangential_target(int v, const Vector3d& goal, Vector3d& target) const;
+  /// Moves v to p if the normal, shape and intersection guards allow it (header comment).
+  bool try_move(int v, const Vector3d& p);
+  /// Rebuilds the grid if needed and applies `operation(a, b)` (true: it changed the mesh) to
+  /// every edge that still exists, in edges() order; returns how many changed it.
+  template <class EdgeOperation>
+  std::size_t sweep_edges(EdgeOperation operation);
   /// Smallest angle of v's triangles with v at p (radians).
   double ring_min_angle(int v, const Vector3d& p) const;
   /// Enters triangle t's current box in the grid (after it was created or changed).
