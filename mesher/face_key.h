@@ -1,4 +1,4 @@
-// A triangle's identity independent of node order, packed in 64 bits for hash maps.
+// A triangle's (or an edge's) identity independent of node order, packed in 64 bits for hash maps.
 #pragma once
 
 #include <cstddef>
@@ -16,6 +16,12 @@ inline std::uint64_t face_key(int a, int b, int c) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(a) << 42) | (static_cast<std::uint64_t>(b) << 21) |
          static_cast<std::uint64_t>(c);
+}
+
+/// Any non-negative int node ids.
+inline std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
 }
 
 }  // namespace tissuemesh

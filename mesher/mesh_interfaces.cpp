@@ -1,5 +1,6 @@
 #include "mesher/mesh_interfaces.h"
 
+#include "mesher/face_key.h"
 #include "core/errors.h"
 #include "mesher/junction_tracing.h"
 
@@ -15,10 +16,6 @@ struct FaceUse {
   std::array<int, 3> outward; ///< winding with the normal out of the tet
   int region;                 ///< tissue id of the tet
 };
-
-std::uint64_t edge_key(int a, int b) {
-  return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
-}
 
 }  // namespace
 

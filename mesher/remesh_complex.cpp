@@ -1,5 +1,6 @@
 #include "mesher/remesh_complex.h"
 
+#include "mesher/face_key.h"
 #include "core/errors.h"
 #include "mesher/triangle_geometry.h"
 
@@ -30,11 +31,6 @@ Eigen::AlignedBox3d box_of(const TrianglePoints& p) {
   b.extend(p[1]);
   b.extend(p[2]);
   return b;
-}
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
 }
 
 }  // namespace
@@ -217,6 +213,15 @@ double RemeshComplex::ring_min_angle(int v, const Vector3d& p) const {
     const NewTriangle q = moved_triangle(t, v, p, v);
     m = std::min(m, min_angle(q.p[0], q.p[1], q.p[2]));
   }
+  return m;
+}
+
+double RemeshComplex::shorter_curve_edge(int v, const Vector3d& p) const {
+  std::vector<int> nb;
+  neighbours(v, nb);
+  double m = INFINITY;
+  for (int w : nb)
+    if (curve_of_edge(v, w) == owner_[v]) m = std::min(m, (x_[w] - p).norm());
   return m;
 }
 

@@ -135,6 +135,11 @@ class RemeshComplex {
   std::size_t sweep_edges(EdgeOperation operation);
   /// Smallest angle of v's triangles with v at p (radians).
   double ring_min_angle(int v, const Vector3d& p) const;
+  /// Shorter of the two junction edges at curve vertex v with v at p (mm). Curve moves must not
+  /// shorten it: projecting midpoints onto a junction loop smaller than h otherwise pulls the
+  /// loop's vertices together (Laplacian shrinkage), down to micrometre edges that a volume
+  /// mesher must then resolve.
+  double shorter_curve_edge(int v, const Vector3d& p) const;
   /// Enters triangle t's current box in the grid (after it was created or changed).
   void index_triangle(int t);
   /// Start of every sweep: rebuilds the grid when the triangle size has drifted from its cells.

@@ -72,6 +72,7 @@ void RemeshComplex::relax() {
       }
       if (found != 2 || !(weight > 0.0)) continue;
       target = proj_.onto_curve(owner_[v], sum / weight);
+      if (shorter_curve_edge(v, target) < shorter_curve_edge(v, x_[v])) continue;
     }
     try_move(v, target);
   }
@@ -109,6 +110,7 @@ std::size_t RemeshComplex::smooth_poor(double min_angle_rad) {
     for (double f : {1.0, 0.5, 0.25}) {
       Vector3d p = x_[v] + f * (target - x_[v]);
       if (f != 1.0) p = kind_[v] == Kind::Surface ? proj_.onto_patch(owner_[v], p) : proj_.onto_curve(owner_[v], p);
+      if (kind_[v] != Kind::Surface && shorter_curve_edge(v, p) < shorter_curve_edge(v, x_[v])) continue;
       if (ring_min_angle(v, p) > before && try_move(v, p)) {
         ++moved;
         break;

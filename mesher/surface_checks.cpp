@@ -1,5 +1,7 @@
 #include "mesher/surface_checks.h"
 
+#include "mesher/face_key.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -16,10 +18,6 @@ namespace {
 namespace PMP = CGAL::Polygon_mesh_processing;
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
-
-std::uint64_t edge_key(int a, int b) {
-  return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
-}
 
 /// Edge usage of oriented triangles: open, non-manifold and misoriented edge counts.
 void count_edges(const std::vector<std::array<int, 3>>& tris, TissueSurfaceCheck& c) {

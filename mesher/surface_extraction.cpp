@@ -20,6 +20,8 @@ namespace {
 constexpr double kLambda = 0.5;
 constexpr double kMu = -0.53;
 
+/// Closed junction loops of at most this many edges are not smoothed (see extract_surface).
+constexpr std::size_t kShortLoopEdges = 8;
 /// Rounds of pulling folded vertices back towards their voxel corners (the last one puts them there).
 constexpr int kUnfoldRounds = 6;
 
@@ -200,6 +202,18 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
       ++out.corner_vertices;
     }
   }
+  // Smoothing shrinks a short closed junction loop (a contact of one or two voxel faces between
+  // two tissues inside a third) towards a point: measured, a one-face tumor|fat contact shrank to
+  // a 0.3 mm perimeter, below anything a volume mesher can resolve without micrometre tets. Such
+  // loops keep their voxel corners.
+  for (const auto& loop : trace_junctions(curve_adj, kind))
+    if (loop.front() == loop.back() && loop.size() <= kShortLoopEdges + 1)
+      for (int v : loop)
+        if (kind[v] == VertexKind::Curve) {
+          kind[v] = VertexKind::Corner;
+          --out.curve_vertices;
+          ++out.corner_vertices;
+        }
   std::vector<Eigen::Vector3d> x(n);
   for (std::size_t v = 0; v < n; ++v)
     x[v] = Eigen::Vector3d(net.lattice[v][0] - 0.5, net.lattice[v][1] - 0.5, net.lattice[v][2] - 0.5);
