@@ -27,12 +27,6 @@ const char* const kJob = "model";
 constexpr int kCalculixThreads = 2;
 constexpr int kLogTailLines = 20;
 
-std::string format(const char* fmt, double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, value);
-  return buf;
-}
-
 /// The last `lines` non-empty lines of `text`.
 std::string tail(const std::string& text, int lines) {
   std::vector<std::string> kept;
@@ -104,18 +98,6 @@ std::vector<Eigen::Vector3d> calculix_displacements(const CalculixRun& run, cons
   return values_by_node(u, model.nodes.size());
 }
 
-SolveResult solve_builtin(const Model& model, Progress& progress) {
-  auto stage = progress.stage("built-in solve");
-  SolveOptions options;
-  options.on_step = [&stage](const StepRecord& s) {
-    stage.note("load " + format("%.4g", s.load_fraction) + ": " + std::to_string(s.iterations) +
-               (s.iterations == 1 ? " iteration" : " iterations") +
-               (s.accepted ? "" : ", cut back: " + s.note));
-  };
-  SolveResult r = solve_static(model, options);
-  stage.note(r.message);
-  return r;
-}
 
 std::string table(const CalculixCheck& c, double mm_per_length, const nlohmann::json& equilibrium) {
   const SolutionComparison& d = c.comparison;
@@ -145,6 +127,19 @@ std::string table(const CalculixCheck& c, double mm_per_length, const nlohmann::
 }
 
 }  // namespace
+
+SolveResult solve_builtin(const Model& model, Progress& progress) {
+  auto stage = progress.stage("built-in solve");
+  SolveOptions options;
+  options.on_step = [&stage](const StepRecord& s) {
+    stage.note("load " + format("%.4g", s.load_fraction) + ": " + std::to_string(s.iterations) +
+               (s.iterations == 1 ? " iteration" : " iterations") +
+               (s.accepted ? "" : ", cut back: " + s.note));
+  };
+  SolveResult r = solve_static(model, options);
+  stage.note(r.message);
+  return r;
+}
 
 std::string require_calculix(const std::string& alternative) {
   const std::string ccx = find_calculix();

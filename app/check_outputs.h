@@ -32,6 +32,10 @@ std::string require_calculix(const std::string& alternative = "");
 /// MooneyRivlin and Ogden are CalculiX laws and stay. Appends one note per replaced tissue.
 Model calculix_comparable_model(const Model& model, std::vector<std::string>& notes);
 
+/// The built-in solve of `model` (default SolveOptions) as a "built-in solve" stage with one note
+/// per increment; never throws for non-convergence (see SolveResult::converged).
+SolveResult solve_builtin(const Model& model, Progress& progress);
+
 /// What the check measured (the record holds it all; these are for the caller's summary).
 struct CalculixCheck {
   nlohmann::json record;             ///< check.json

@@ -108,4 +108,10 @@ std::string command_line(int argc, char** argv) {
   return s;
 }
 
+std::string format(const char* fmt, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, value);
+  return buf;
+}
+
 }  // namespace tissuemesh::app

@@ -24,6 +24,9 @@ int run_guarded(const std::string& command, const std::function<void()>& body);
 /// A Progress that prints one line when a stage starts, its notes, and its wall time at the end.
 Progress console_progress();
 
+/// printf-style formatting of one number, e.g. format("%.3f", x).
+std::string format(const char* fmt, double value);
+
 /// The part of every run record that does not depend on the command: versions, peak memory,
 /// stage timings, command line.
 nlohmann::json run_record_common(const Progress& progress, const std::string& command_line);

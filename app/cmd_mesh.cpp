@@ -46,7 +46,7 @@ void add_mesh_command(CLI::App& cli, Invocation& run) {
         surface_into(labels, opt->labels, config, inputs, run.command_line, progress, out);
         out.commit();
         std::cout << "wrote " << out.final_path("surface.vtp").string()
-                  << ", junctions.vtp, report.json, report.txt (volume meshing of the surface pipeline: issue #6)\n";
+                  << ", junctions.vtp, mesh.vtu, report.json, report.txt\n";
         return;
       }
       mesh_into(labels, opt->labels, config, inputs, run.command_line, progress, out);

@@ -10,7 +10,12 @@ JobConfig JobConfig::load(const std::string& path) {
   YamlMap top(load_yaml_file(path), "", path);
   for (const char* key : {"pipeline", "tissues", "ignore_labels", "direct", "phantom"})
     c.has_mesh = c.has_mesh || top.has(key);
-  if (c.has_mesh) c.mesh = MeshConfig::from_top(top);
+  if (c.has_mesh) {
+    c.mesh = MeshConfig::from_top(top);
+  } else {  // `check --tetgen` on a model config: the TetGen keys alone
+    YamlMap tetgen = top.map("tetgen");
+    c.mesh.tetgen = TetgenParams::from_yaml(tetgen);
+  }
   c.has_materials = top.has("materials");
   YamlMap materials = top.map("materials");
   c.materials = MaterialTable::from_yaml(materials, path);
@@ -37,7 +42,12 @@ std::string JobConfig::to_yaml() const {
   YAML::Emitter out;
   out.SetDoublePrecision(15);  // 1e-06, not 9.9999999999999995e-07; still exact for typed values
   out << YAML::BeginMap;
-  if (has_mesh) mesh.emit_keys(out);
+  if (has_mesh) {
+    mesh.emit_keys(out);
+  } else {
+    out << YAML::Key << "tetgen" << YAML::Value;
+    mesh.tetgen.to_yaml(out);
+  }
   out << YAML::Key << "materials" << YAML::Value;
   materials.to_yaml(out);
   out << YAML::Key << "model" << YAML::Value;

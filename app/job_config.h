@@ -1,7 +1,8 @@
 // JobConfig: one config file for the whole pipeline — meshing (mesher/mesh_config.h), materials
 // (materials/material_config.h), the model (core/model_settings.h) and export options
 // (fe_export/export_options.h). Each command reads the parts it needs; unknown keys anywhere are
-// errors. A file without meshing keys (no `tissues`) is a valid export/solve config.
+// errors. A file without meshing keys (no `tissues`) is a valid export/solve/check config; of the
+// meshing part it may then hold `tetgen:` (for check --tetgen).
 #pragma once
 
 #include "core/model_settings.h"

@@ -53,9 +53,10 @@ void surface_into(const LabelImage& labels, const std::string& image_name, const
                   const nlohmann::json& inputs, const std::string& cmd, Progress& progress, OutputDir& out) {
   const SurfaceJobResult result = run_surface_job(labels, image_name, config, progress);
   {
-    auto stage = progress.stage("write surface.vtp, junctions.vtp");
+    auto stage = progress.stage(result.volume ? "write surface.vtp, junctions.vtp, mesh.vtu" : "write surface.vtp, junctions.vtp");
     write_surface_vtp(result.surface(), out.stage("surface.vtp").string());
     write_junctions_vtp(result.surface(), out.stage("junctions.vtp").string());
+    if (result.volume) write_vtu(result.volume->meshing.mesh, out.stage("mesh.vtu").string());
   }
   const std::string text = surface_job_text(result);
   nlohmann::json record = mesh_record(labels, config, inputs, cmd, progress);
@@ -63,6 +64,7 @@ void surface_into(const LabelImage& labels, const std::string& image_name, const
   record["outputs"] = {{"surface", out.final_path("surface.vtp").string()},
                        {"junctions", out.final_path("junctions.vtp").string()},
                        {"report_text", out.final_path("report.txt").string()}};
+  if (result.volume) record["outputs"]["mesh"] = out.final_path("mesh.vtu").string();
   std::cout << "\n" << text;
   if (!result.checks.valid())
     throw MeshingError(std::string(result.remesh ? "the remeshed" : "the extracted") +

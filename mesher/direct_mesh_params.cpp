@@ -21,16 +21,7 @@ DirectMeshParams DirectMeshParams::from_yaml(YamlMap& m) {
   p.refine_radius_mm = m.positive("refine_radius_mm", p.refine_radius_mm);
   p.smooth_boundaries = m.boolean("smooth_boundaries", p.smooth_boundaries);
   p.smoothing_sigma_mm = m.in_range("smoothing_sigma_mm", p.smoothing_sigma_mm, 0.0, 100.0);
-  p.lloyd = m.boolean("lloyd", p.lloyd);
-  p.odt = m.boolean("odt", p.odt);
-  p.optimise_time_limit_s = m.positive("optimise_time_limit_s", p.optimise_time_limit_s);
-  p.perturb = m.boolean("perturb", p.perturb);
-  p.exude = m.boolean("exude", p.exude);
-  p.sliver_bound_deg = m.in_range("sliver_bound_deg", p.sliver_bound_deg, 0.0, 60.0);
-  p.sliver_time_limit_s = m.positive("sliver_time_limit_s", p.sliver_time_limit_s);
-  p.remove_boundary_slivers_deg = m.in_range("remove_boundary_slivers_deg", p.remove_boundary_slivers_deg, 0.0, 30.0);
-  p.flip_slivers_below_deg = m.in_range("flip_slivers_below_deg", p.flip_slivers_below_deg, 0.0, 60.0);
-  p.interface_flips = m.boolean("interface_flips", p.interface_flips);
+  p.optimise.read(m);
   m.finish();
   return p;
 }
@@ -50,16 +41,7 @@ void DirectMeshParams::to_yaml(YAML::Emitter& out) const {
   out << YAML::Key << "refine_radius_mm" << YAML::Value << refine_radius_mm;
   out << YAML::Key << "smooth_boundaries" << YAML::Value << smooth_boundaries;
   out << YAML::Key << "smoothing_sigma_mm" << YAML::Value << smoothing_sigma_mm;
-  out << YAML::Key << "lloyd" << YAML::Value << lloyd;
-  out << YAML::Key << "odt" << YAML::Value << odt;
-  out << YAML::Key << "optimise_time_limit_s" << YAML::Value << optimise_time_limit_s;
-  out << YAML::Key << "perturb" << YAML::Value << perturb;
-  out << YAML::Key << "exude" << YAML::Value << exude;
-  out << YAML::Key << "sliver_bound_deg" << YAML::Value << sliver_bound_deg;
-  out << YAML::Key << "sliver_time_limit_s" << YAML::Value << sliver_time_limit_s;
-  out << YAML::Key << "remove_boundary_slivers_deg" << YAML::Value << remove_boundary_slivers_deg;
-  out << YAML::Key << "flip_slivers_below_deg" << YAML::Value << flip_slivers_below_deg;
-  out << YAML::Key << "interface_flips" << YAML::Value << interface_flips;
+  optimise.emit(out);
   out << YAML::EndMap;
 }
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "core/yaml_map.h"
+#include "mesher/mesh3_optimisation.h"
 
 #include <map>
 #include <string>
@@ -32,24 +33,7 @@ struct DirectMeshParams {
   /// sigma = 0.75 mm and ~14% at 1.5 mm: keep sigma well below the size of the smallest tissue.
   double smoothing_sigma_mm = 0.0;
 
-  bool lloyd = false;                   ///< Lloyd optimisation (slow; off by default)
-  bool odt = false;                     ///< ODT optimisation (slow; off by default)
-  double optimise_time_limit_s = 10.0;  ///< time limit of each of Lloyd / ODT, s
-  /// Sliver perturbation. Off by default: CGAL 5.5's perturber gives a different mesh on every
-  /// run (measured), and the same input must give the same output files.
-  bool perturb = false;
-  bool exude = true;                    ///< sliver exudation
-  double sliver_bound_deg = 15.0;       ///< dihedral angle the perturber / exuder aim for, degrees
-  double sliver_time_limit_s = 20.0;    ///< time limit of each of perturb / exude, s
-  /// Remove tets with a dihedral below this (degrees) that have >= 2 faces on the outer boundary
-  /// (flat caps no vertex move can repair; boundary_slivers.h). 0 = keep them.
-  double remove_boundary_slivers_deg = 10.0;
-  /// Improve tets with a dihedral below this (degrees) by 2-3 flips and edge removals inside one
-  /// tissue (sliver_flips.h): interfaces and volumes unchanged. 0 = off.
-  double flip_slivers_below_deg = 15.0;
-  /// Let those flips give a flat wedge on an interface to the neighbouring tissue (moves the
-  /// interface by the wedge's thickness; the moved volume is reported).
-  bool interface_flips = true;
+  Mesh3Optimisation optimise;           ///< optimisation and sliver repair (mesh3_optimisation.h)
 
   /// Reads the `direct:` map (unknown keys are errors; values range-checked with the key named).
   static DirectMeshParams from_yaml(YamlMap& map);

@@ -5,6 +5,7 @@
 #include "mesher/face_key.h"
 #include "mesher/label_components.h"
 #include "mesher/label_weights.h"
+#include "mesher/mesh3_steps.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Image_3.h>
@@ -257,11 +258,6 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
                     p::cell_radius_edge_ratio = params.cell_radius_edge_ratio, p::cell_size = cell_field);
 
   C3t3 c3t3;
-  auto note_time_limit = [&](const std::string& what, CGAL::Mesh_optimization_return_code code) {
-    if (code == CGAL::TIME_LIMIT_REACHED)
-      result.warnings.push_back(what + " stopped at its time limit: the mesh depends on machine speed and "
-                                       "may differ between runs (raise the limit or lower sliver_bound_deg)");
-  };
   {
     auto stage = progress.stage("protect border features");
     CGAL::Mesh_3::internal::init_c3t3_with_features(c3t3, domain, criteria);
@@ -272,61 +268,18 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
     result.initial_points = seed_components(c3t3, domain, ids, comps, ids.spacing);
     stage.note(std::to_string(result.initial_points) + " initial surface points");
   }
-  {
-    auto stage = progress.stage("refine (CGAL Mesh_3)");
-    CGAL::refine_mesh_3(c3t3, domain, criteria, p::no_perturb(), p::no_exude());
-    stage.note(std::to_string(c3t3.number_of_cells_in_complex()) + " tets");
-  }
-  if (params.lloyd) {
-    auto stage = progress.stage("Lloyd");
-    note_time_limit("Lloyd", CGAL::lloyd_optimize_mesh_3(c3t3, domain, p::time_limit = params.optimise_time_limit_s));
-  }
-  if (params.odt) {
-    auto stage = progress.stage("ODT");
-    note_time_limit("ODT", CGAL::odt_optimize_mesh_3(c3t3, domain, p::time_limit = params.optimise_time_limit_s));
-  }
-  if (params.perturb) {
-    auto stage = progress.stage("perturb slivers");
-    note_time_limit("perturbation", CGAL::perturb_mesh_3(c3t3, domain, p::time_limit = params.sliver_time_limit_s,
-                                                         p::sliver_bound = params.sliver_bound_deg));
-  }
-  if (params.exude) {
-    auto stage = progress.stage("exude slivers");
-    note_time_limit("exudation", CGAL::exude_mesh_3(c3t3, p::time_limit = params.sliver_time_limit_s,
-                                                    p::sliver_bound = params.sliver_bound_deg));
-  }
+  mesh3::refine(c3t3, domain, criteria, progress);
+  mesh3::optimise(c3t3, domain, params.optimise, progress, result.warnings);
 
   auto stage = progress.stage("extract mesh");
-  TetMesh& mesh = result.mesh;
-  mesh.tissue_names = names;
   const Eigen::Matrix3d& D = ids.direction;
-
-  const bool reflect = D.determinant() < 0;
-  std::map<Tr::Vertex_handle, int> vindex;
-  for (auto cit = c3t3.cells_in_complex_begin(); cit != c3t3.cells_in_complex_end(); ++cit) {
-    std::array<int, 4> tet{};
-    for (int q = 0; q < 4; ++q) {
-      const Tr::Vertex_handle v = cit->vertex(q);
-      auto [it, fresh] = vindex.emplace(v, static_cast<int>(mesh.points.size()));
-      if (fresh) {
-        const auto& wp = c3t3.triangulation().point(v);
-        mesh.points.push_back(ids.origin + D * Eigen::Vector3d(wp.x(), wp.y(), wp.z()));
-      }
-      tet[q] = it->second;
-    }
-    // CGAL cells are positively oriented in its axis-aligned frame; a reflecting direction matrix
-    // flips that, which one swap undoes.
-    if (reflect) std::swap(tet[2], tet[3]);
-    mesh.tets.push_back(tet);
-    mesh.tissue_ids.push_back(static_cast<int>(c3t3.subdomain_index(cit)));
-  }
-  if (mesh.tets.empty()) throw MeshingError("CGAL Mesh_3 produced no tetrahedra");
-  if (mesh.points.size() >= kMaxFaceKeyNodes &&
-      (params.remove_boundary_slivers_deg > 0 || params.flip_slivers_below_deg > 0))
-    result.warnings.push_back("sliver repair skipped: the mesh has more than 2,097,151 nodes");
-  if (params.remove_boundary_slivers_deg > 0)
-    result.boundary_slivers = remove_boundary_slivers(mesh, params.remove_boundary_slivers_deg);
-  if (params.flip_slivers_below_deg > 0) result.sliver_flips = flip_slivers(mesh, params.flip_slivers_below_deg, params.interface_flips);
+  result.mesh = mesh3::cells(
+      c3t3, [&](double x, double y, double z) -> Eigen::Vector3d { return ids.origin + D * Eigen::Vector3d(x, y, z); },
+      D.determinant() < 0, names);
+  TetMesh& mesh = result.mesh;
+  const SliverRepair repair = repair_slivers(mesh, params.optimise, result.warnings);
+  result.boundary_slivers = repair.boundary_slivers;
+  result.sliver_flips = repair.sliver_flips;
 
   // Which image components are covered by tets of their tissue? A tet credits the component of
   // the voxel under its centroid or, when that voxel has another tissue (the mesh boundary is

@@ -25,6 +25,10 @@ MeshConfig MeshConfig::from_top(YamlMap& top) {
   c.surface = SurfaceParams::from_yaml(surface);
   YamlMap approach = top.map("approach");
   c.approach = ApproachParams::from_yaml(approach);
+  YamlMap volume = top.map("volume");
+  c.volume = VolumeMeshParams::from_yaml(volume);
+  YamlMap tetgen = top.map("tetgen");
+  c.tetgen = TetgenParams::from_yaml(tetgen);
   if (c.approach.enabled && (c.pipeline != "surface" || !c.surface.remesh()))
     throw InputError(top.where("approach") +
                      ": approach grading needs pipeline: surface with surface.target_vertices or surface.target_edge_mm "
@@ -66,6 +70,10 @@ void MeshConfig::emit_keys(YAML::Emitter& out) const {
   surface.to_yaml(out);
   out << YAML::Key << "approach" << YAML::Value;
   approach.to_yaml(out);
+  out << YAML::Key << "volume" << YAML::Value;
+  volume.to_yaml(out);
+  out << YAML::Key << "tetgen" << YAML::Value;
+  tetgen.to_yaml(out);
   out << YAML::Key << "phantom" << YAML::Value;
   phantom_params_to_yaml(phantom, out);
 }

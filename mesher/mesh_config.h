@@ -1,12 +1,14 @@
 // MeshConfig: the schema of a meshing config file (YAML), owned by code.
 //
 //   pipeline: direct            # 'direct' (CGAL from the image) or 'surface' (mesher/surface_job.h:
-//                               # multi-material surface; its volume meshing arrives with issue #6)
+//                               # multi-material surface, then CGAL from that surface)
 //   tissues: [...]              # see core/tissue_table.h
 //   ignore_labels: [0]
 //   direct: {...}               # see mesher/direct_mesh_params.h
 //   surface: {...}              # see mesher/surface_params.h
 //   approach: {...}             # see mesher/approach_params.h (pipeline: surface)
+//   volume: {...}               # see mesher/volume_mesh_params.h (pipeline: surface)
+//   tetgen: {...}               # see mesher/tetgen_params.h (check --tetgen)
 //   phantom: {...}              # optional: the phantom `tissuemesh demo` generates (phantom.h)
 //
 // Unknown keys anywhere are errors naming the file and key path. `to_yaml()` prints the effective
@@ -18,6 +20,8 @@
 #include "mesher/phantom.h"
 #include "mesher/approach_params.h"
 #include "mesher/surface_params.h"
+#include "mesher/tetgen_params.h"
+#include "mesher/volume_mesh_params.h"
 
 #include <string>
 
@@ -30,6 +34,8 @@ struct MeshConfig {
   DirectMeshParams direct;
   SurfaceParams surface;
   ApproachParams approach;
+  VolumeMeshParams volume;
+  TetgenParams tetgen;
   PhantomParams phantom;
 
   /// Loads and validates a config file; throws InputError naming the file and key.

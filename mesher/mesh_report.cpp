@@ -72,6 +72,27 @@ std::string mesh_summary_text(const TetMesh& mesh) {
   return s.str();
 }
 
+namespace {
+
+void add_sliver_repair_json(nlohmann::json& j, const BoundarySliverRemoval& b, const SliverFlipResult& f) {
+  j["boundary_slivers_removed"] = {{"tets", b.tets_removed}, {"volume_mm3", b.volume_removed_mm3}};
+  j["sliver_flips"] = {{"flips_2_3", f.flips_23},
+                       {"edge_removals", f.edge_removals},
+                       {"passes", f.passes},
+                       {"interface_flips", f.interface_flips},
+                       {"volume_moved_between_tissues_mm3", f.volume_relabelled_mm3}};
+}
+
+std::string sliver_repair_text(const BoundarySliverRemoval& b, const SliverFlipResult& f) {
+  std::ostringstream s;
+  s << "boundary slivers removed: " << b.tets_removed << " tets, " << fmt("%.4f mm^3\n", b.volume_removed_mm3);
+  s << "sliver flips: " << f.flips_23 << " 2-3 flips, " << f.edge_removals << " edge removals (" << f.interface_flips
+    << " across interfaces, " << fmt("%.4f mm^3 moved", f.volume_relabelled_mm3) << ") in " << f.passes << " passes\n";
+  return s.str();
+}
+
+}  // namespace
+
 nlohmann::json mesh_job_json(const MeshJobResult& r) {
   nlohmann::json j;
   const TetMesh& mesh = r.meshing.mesh;
@@ -89,13 +110,7 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
   j["image_components"] = r.meshing.image_components;
   j["initial_surface_points"] = r.meshing.initial_points;
   j["components_not_meshed"] = missed;
-  j["boundary_slivers_removed"] = {{"tets", r.meshing.boundary_slivers.tets_removed},
-                                   {"volume_mm3", r.meshing.boundary_slivers.volume_removed_mm3}};
-  j["sliver_flips"] = {{"flips_2_3", r.meshing.sliver_flips.flips_23},
-                       {"edge_removals", r.meshing.sliver_flips.edge_removals},
-                       {"passes", r.meshing.sliver_flips.passes},
-                       {"interface_flips", r.meshing.sliver_flips.interface_flips},
-                       {"volume_moved_between_tissues_mm3", r.meshing.sliver_flips.volume_relabelled_mm3}};
+  add_sliver_repair_json(j, r.meshing.boundary_slivers, r.meshing.sliver_flips);
   return j;
 }
 
@@ -107,12 +122,7 @@ std::string mesh_job_text(const MeshJobResult& r) {
   s << format_conformity_table(r.conformity, mesh.tissue_names) << "\n";
   s << "image components (6-connected, all tissues): " << r.meshing.image_components << "; not meshed: "
     << r.meshing.missed.size() << "\n";
-  s << "boundary slivers removed: " << r.meshing.boundary_slivers.tets_removed << " tets, "
-    << fmt("%.4f mm^3\n", r.meshing.boundary_slivers.volume_removed_mm3);
-  s << "sliver flips: " << r.meshing.sliver_flips.flips_23 << " 2-3 flips, " << r.meshing.sliver_flips.edge_removals
-    << " edge removals (" << r.meshing.sliver_flips.interface_flips << " across interfaces, "
-    << fmt("%.4f mm^3 moved", r.meshing.sliver_flips.volume_relabelled_mm3) << ") in " << r.meshing.sliver_flips.passes
-    << " passes\n";
+  s << sliver_repair_text(r.meshing.boundary_slivers, r.meshing.sliver_flips);
   for (const auto& w : r.meshing.warnings) s << "WARNING: " << w << "\n";
   for (const auto& m : r.meshing.missed)
     s << "  " << m.tissue << ": " << m.voxels << " voxels, " << fmt("%.2f mm^3 at (%.1f, ", m.volume_mm3, m.centroid_mm[0])
@@ -207,6 +217,23 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
   j["junction_edges"] = r.checks.junction_edges;
   j["junction_edges_off_junction"] = r.checks.junction_edges_off_junction;
   j["valid"] = r.checks.valid();
+  if (r.volume) {
+    const VolumeStage& v = *r.volume;
+    nlohmann::json vj;
+    vj["mesher"] = "CGAL Mesh_3 " + cgal_version() + " from the surface (Polyhedral_complex_mesh_domain_3)";
+    vj["size_field_edge_mm"] = v.size_mm;
+    vj["nodes"] = v.meshing.mesh.points.size();
+    vj["tets"] = v.meshing.mesh.tets.size();
+    vj["patch_pieces"] = v.meshing.pieces;
+    vj["duplicated_piece_vertices"] = v.meshing.duplicated_vertices;
+    vj["initial_points"] = v.meshing.initial_points;
+    vj["quality"] = to_json(v.quality);
+    vj["conformity"] = to_json(v.conformity);
+    vj["conforming"] = v.conformity.conforming();
+    add_sliver_repair_json(vj, v.meshing.repair.boundary_slivers, v.meshing.repair.sliver_flips);
+    vj["warnings"] = v.meshing.warnings;
+    j["volume_mesh"] = vj;
+  }
   return j;
 }
 
@@ -251,7 +278,17 @@ std::string surface_job_text(const SurfaceJobResult& r) {
   o << "\ntriangles stored twice: " << r.checks.duplicate_triangles << "; junction edges: " << r.checks.junction_edges
     << " (" << r.checks.junction_edges_off_junction << " not where >= 3 triangles meet)\n";
   o << (r.checks.valid() ? "surface valid: every tissue closed, oriented and intersection free\n"
-                         : "WARNING: the surface fails a check above\n");
+                         : "WARNING: the surface fails a check above; no volume mesh\n");
+  if (r.volume) {
+    const VolumeStage& v = *r.volume;
+    o << "\nvolume mesh (CGAL Mesh_3 from the surface, size field edge " << fmt("%.3f mm", v.size_mm) << "): "
+      << v.meshing.mesh.points.size() << " nodes, " << v.meshing.mesh.tets.size() << " tets, " << v.meshing.pieces
+      << " patch pieces\n\n";
+    o << format_quality_table(v.quality) << "\n";
+    o << format_conformity_table(v.conformity, v.meshing.mesh.tissue_names) << "\n";
+    o << sliver_repair_text(v.meshing.repair.boundary_slivers, v.meshing.repair.sliver_flips);
+    for (const auto& w : v.meshing.warnings) o << "WARNING: " << w << "\n";
+  }
   return o.str();
 }
 

@@ -4,6 +4,33 @@
 
 namespace tissuemesh {
 
+namespace {
+
+double mean_edge_mm(const TriSurface& s) {
+  double sum = 0.0;
+  for (const auto& t : s.triangles)
+    for (int e = 0; e < 3; ++e) sum += (s.points[t[e]] - s.points[t[(e + 1) % 3]]).norm();
+  return s.triangles.empty() ? 0.0 : sum / (3.0 * static_cast<double>(s.triangles.size()));
+}
+
+void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, Progress& progress) {
+  if (!r.checks.valid()) return;
+  VolumeStage v;
+  v.size_mm = r.remesh ? r.remesh->edge_length_mm : mean_edge_mm(r.extraction.surface);
+  const ApproachField* field = r.approach ? &*r.approach : nullptr;
+  const double L = v.size_mm;
+  const std::function<double(const Eigen::Vector3d&)> h = [L, field](const Eigen::Vector3d& p) {
+    return field ? L * field->relative_size(p) : L;
+  };
+  v.meshing = mesh_complex(r.surface(), h, config.volume, progress);
+  auto stage = progress.stage("volume mesh quality and conformity");
+  v.quality = compute_quality(v.meshing.mesh, r.voxel_volume_mm3);
+  v.conformity = check_conformity(v.meshing.mesh);
+  r.volume = std::move(v);
+}
+
+}  // namespace
+
 SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
                                  Progress& progress) {
   SurfaceJobResult r;
@@ -12,7 +39,10 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
   r.extracted_quality = surface_quality(r.extraction.surface);
   r.checks = r.extraction.checks;
   r.quality = r.extracted_quality;
-  if (!config.surface.remesh() || !r.extraction.checks.valid()) return r;
+  if (!config.surface.remesh() || !r.extraction.checks.valid()) {
+    mesh_volume(r, config, progress);
+    return r;
+  }
   const SurfaceProjection on_extracted(r.extraction.surface);
   RemeshOptions options;
   options.target_vertices = config.surface.target_vertices;
@@ -31,9 +61,12 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
     r.quality = surface_quality(r.remesh->surface);
     if (r.approach) r.grading = measure_grading(r.remesh->surface, *r.approach);
   }
-  auto stage = progress.stage("Hausdorff distance to the extracted surface");
-  const SurfaceProjection on_remeshed(r.remesh->surface);
-  r.hausdorff = hausdorff_distance(r.remesh->surface, on_remeshed, r.extraction.surface, on_extracted);
+  {
+    auto stage = progress.stage("Hausdorff distance to the extracted surface");
+    const SurfaceProjection on_remeshed(r.remesh->surface);
+    r.hausdorff = hausdorff_distance(r.remesh->surface, on_remeshed, r.extraction.surface, on_extracted);
+  }
+  mesh_volume(r, config, progress);
   return r;
 }
 

@@ -1,13 +1,18 @@
-// The surface pipeline's job (issue #5): label image + config -> multi-material surface with its
-// checks and quality (the seed paper's Tables 1 and 2 and per-tissue volume against voxel volume).
-// Volume meshing from this surface arrives with issue #6. Nothing is printed; stages go through
-// `progress`.
+// The surface pipeline's job (issues #5, #6): label image + config -> multi-material surface with
+// its checks and quality (the seed paper's Tables 1 and 2 and per-tissue volume against voxel
+// volume) -> tet mesh of that surface (mesher/complex_mesher.h) with its quality and conformity.
+// The volume mesher's size field is the surface's: h(x) = L s(x) with L the remesher's edge length
+// (the mean edge of the extracted surface without remeshing) and s the approach grading (1 without
+// it). Nothing is printed; stages go through `progress`.
 #pragma once
 
 #include "core/label_image.h"
 #include "core/progress.h"
 #include "mesher/mesh_config.h"
 #include "mesher/approach_field.h"
+#include "mesher/complex_mesher.h"
+#include "mesher/conformity.h"
+#include "mesher/mesh_quality.h"
 #include "mesher/surface_distance.h"
 #include "mesher/surface_extraction.h"
 #include "mesher/surface_quality.h"
@@ -19,6 +24,14 @@
 
 namespace tissuemesh {
 
+/// The tet mesh of the surface and what it measured.
+struct VolumeStage {
+  ComplexMeshResult meshing;
+  double size_mm = 0.0;          ///< L of the size field h(x) = L s(x), mm
+  QualityReport quality;         ///< per tissue, voxel volume as reference
+  ConformityReport conformity;
+};
+
 struct SurfaceJobResult {
   SurfaceExtraction extraction;             ///< extracted surface, repair, vertex counts and its checks
   SurfaceQuality extracted_quality;         ///< Table 1 figures of the extracted surface
@@ -29,13 +42,15 @@ struct SurfaceJobResult {
   SurfaceCheckReport checks;                ///< of surface()
   SurfaceQuality quality;                   ///< Table 1 figures of surface()
   std::map<int, double> voxel_volume_mm3;   ///< tissue id -> voxel volume of the tissue
+  std::optional<VolumeStage> volume;        ///< the tet mesh, when the surface passes its checks
 
   /// The pipeline's result: the remeshed surface, or the extracted one without remeshing.
   const TriSurface& surface() const { return remesh ? remesh->surface : extraction.surface; }
 };
 
 /// Throws InputError for bad labels (see tissue_id_image), MeshingError when the image has no
-/// boundary. A surface failing its checks is returned (the caller reports it), not thrown.
+/// boundary. A surface failing its checks is returned without a volume mesh (the caller reports
+/// it), not thrown.
 SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
                                  Progress& progress);
 

@@ -26,22 +26,12 @@
 #include "core/progress.h"
 #include "core/tet_mesh.h"
 #include "core/tri_surface.h"
+#include "mesher/tetgen_params.h"
 
 #include <map>
 #include <string>
 
 namespace tissuemesh {
-
-struct TetgenParams {
-  /// Largest circumradius / shortest edge of a tet (TetGen's -q first value, > 1; 2 is the
-  /// classical bound with guaranteed termination).
-  double radius_edge_ratio = 2.0;
-  /// Smallest dihedral angle TetGen aims for (-q second value, degrees; 0 = TetGen's default).
-  double min_dihedral_deg = 0.0;
-  /// Maximum tet volume per tissue name, mm^3; tissues not listed get the volume of the regular
-  /// tet whose edge is the mean edge length of the tissue's boundary triangles.
-  std::map<std::string, double> max_volume_mm3;
-};
 
 struct TetgenResult {
   TetMesh mesh;

@@ -113,7 +113,7 @@ TEST_F(Check, CalculixAndBuiltInAgreeOnTheBlock) {
 TEST_F(Check, WithoutACrossCheckIsBadInput) {
   const auto r = run_cli("check block.vtu -c block.yaml -o out", dir);
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("choose a cross-check: --calculix"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("choose one cross-check: --calculix or --tetgen"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 }
 
@@ -136,6 +136,49 @@ TEST_F(Check, FailingCalculixIsAnInternalFailureShowingItsLog) {
   for (const char* needle : {"exit code 201", "*ERROR reading *MATERIAL: fake failure"})
     EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out")) << "no partial output";
+}
+
+TEST_F(Check, TetgenMeshesTheSameGeometryAndMovesTheTumorAlike) {
+  // tet10: with nu ~ 0.4985, tet4 locks, and locking depends on the mesh (measured: the tumor's
+  // mean displacement differs by 40 % between the two tet4 meshes, 3.4 % with tet10).
+  std::string yaml = read_file(dir / "block.yaml");
+  yaml.replace(yaml.find("element: tet4"), 13, "element: tet10");
+  std::ofstream(dir / "block10.yaml") << yaml;
+  const auto r = run_cli("check block.vtu -c block10.yaml -o out --tetgen", dir);
+  std::cout << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const std::string& f : files_below(dir / "out"))
+    EXPECT_TRUE(f == "check.json" || f == "mesh_tetgen.vtu") << "unexpected output " << f;
+  // Read back independently of the writer's caller: same tissues, conforming, positive tets.
+  const TetMesh tg = read_vtu((dir / "out/mesh_tetgen.vtu").string());
+  EXPECT_EQ(tg.tissue_names, test::block_mesh().tissue_names);
+  const auto record = nlohmann::json::parse(read_file(dir / "out/check.json"));
+  EXPECT_EQ(record["conformity"]["tetgen"]["faces_shared_by_more_than_two"], 0);
+  EXPECT_EQ(record["conformity"]["tetgen"]["inverted_tets"], 0);
+  // TetGen keeps the input triangles (-Y), so the tissues enclose exactly the block's volumes
+  // and every interface keeps its area.
+  const double volumes[] = {800.0, 600.0, 600.0};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(record["tissues"][i]["tetgen"]["volume_mm3"].get<double>(), volumes[i],
+                test::kRelativeRoundoff * volumes[i]);
+  }
+  for (const auto& f : record["interfaces"])
+    EXPECT_NEAR(f["tetgen_area_mm2"].get<double>(), f["mesh_area_mm2"].get<double>(),
+                test::kRelativeRoundoff * f["mesh_area_mm2"].get<double>())
+        << f["interface"];
+  // Issue #6's bound: the tumor's mean displacement under gravity within 5 % between the meshes.
+  const double d = record["target"]["difference_percent"];
+  std::cout << "[ check    ] block: tumor mean displacement differs by " << d << " % between the meshes\n";
+  EXPECT_LE(d, 100.0 * test::kCrossMeshDisplacementRel);
+  EXPECT_GT(d, 0.0);  // two different meshes: a zero difference would mean one solve was reused
+  EXPECT_NE(r.out.find("TetGen cross-check"), std::string::npos);
+}
+
+TEST_F(Check, TetgenWithAnUnknownTargetIsBadInput) {
+  const auto r = run_cli("check block.vtu -c block.yaml -o out --tetgen --target liver", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("'liver' is not a tissue"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 }
 
 }  // namespace

@@ -29,9 +29,9 @@ TetMesh unrepaired_mesh() {
   p.facet_distance_mm = 0.3;
   p.cell_size_mm = 3.0;
   p.refine_tissue = "";
-  p.exude = false;
-  p.remove_boundary_slivers_deg = 0;
-  p.flip_slivers_below_deg = 0;
+  p.optimise.exude = false;
+  p.optimise.remove_boundary_slivers_deg = 0;
+  p.optimise.flip_slivers_below_deg = 0;
   Progress progress;
   return mesh_labels_direct(img, {"outer", "inner"}, p, progress).mesh;
 }

@@ -8,7 +8,7 @@
 #include "mesher/surface_projection.h"
 #include "mesher/surface_remesh.h"
 #include "mesher/tetgen_mesher.h"
-#include "support/surface_images.h"
+#include "support/complex_meshes.h"
 #include "support/tolerances.h"
 
 #include <gtest/gtest.h>
@@ -20,16 +20,6 @@ using namespace tissuemesh;
 using namespace tissuemesh::test;
 
 namespace {
-
-TriSurface remeshed(const LabelImage& img, int n_tissues, int budget) {
-  const TriSurface input = extract(img, n_tissues).surface;
-  const SurfaceProjection on_input(input);
-  RemeshOptions options;
-  options.target_vertices = budget;
-  options.max_deviation_mm = 0.5 * img.spacing.norm();
-  Progress progress;
-  return remesh_surface(input, on_input, options, progress).surface;
-}
 
 TetgenResult mesh(const TriSurface& s, const TetgenParams& params = {}) {
   Progress progress;
@@ -53,25 +43,15 @@ double max_radius_edge(const TetMesh& m) {
 /// Per-tissue tet volume must equal the volume the surface encloses.
 void expect_surface_volumes(const TetMesh& m, const TriSurface& s) {
   const SurfaceCheckReport checks = check_surface(s);
-  std::vector<double> volume(m.num_tissues() + 1, 0.0);
-  for (std::size_t t = 0; t < m.tets.size(); ++t) {
-    const auto& k = m.tets[t];
-    volume[m.tissue_ids[t]] += signed_tet_volume(m.points[k[0]], m.points[k[1]], m.points[k[2]], m.points[k[3]]);
-  }
+  const std::vector<double> volume = tissue_volumes(m);
   for (const TissueSurfaceCheck& c : checks.tissues)
     EXPECT_NEAR(volume[c.tissue_id], c.volume_mm3, kRelativeRoundoff * c.volume_mm3) << c.name;
-}
-
-std::set<std::pair<int, int>> interfaces(const ConformityReport& r) {
-  std::set<std::pair<int, int>> out;
-  for (const auto& [pair, count] : r.interface_faces) out.insert(pair);
-  return out;
 }
 
 }  // namespace
 
 TEST(TetgenMesher, NestedSpheresConformingWithTheSurfaceVolumes) {
-  const TriSurface s = remeshed(nested_spheres(), 2, 300);
+  const TriSurface s = remeshed(nested_spheres(), 2, 300).surface;
   const TetgenResult r = mesh(s);
   ASSERT_NO_THROW(r.mesh.validate("TetGen spheres"));
   const ConformityReport c = check_conformity(r.mesh);
@@ -86,7 +66,7 @@ TEST(TetgenMesher, NestedSpheresConformingWithTheSurfaceVolumes) {
 }
 
 TEST(TetgenMesher, ThreeBoxesKeepTheirTripleJunctionInterfaces) {
-  const TriSurface s = remeshed(three_boxes(), 3, 400);
+  const TriSurface s = remeshed(three_boxes(), 3, 400).surface;
   const TetgenResult r = mesh(s);
   const ConformityReport c = check_conformity(r.mesh);
   EXPECT_TRUE(c.conforming());
@@ -96,7 +76,7 @@ TEST(TetgenMesher, ThreeBoxesKeepTheirTripleJunctionInterfaces) {
 }
 
 TEST(TetgenMesher, VolumeBoundRefinesAndRunsAreIdentical) {
-  const TriSurface s = remeshed(nested_spheres(), 2, 300);
+  const TriSurface s = remeshed(nested_spheres(), 2, 300).surface;
   const TetgenResult coarse = mesh(s);
   TetgenParams fine;
   fine.max_volume_mm3 = {{"t1", 0.5}, {"t2", 0.5}};
@@ -115,7 +95,7 @@ TEST(TetgenMesher, VolumeBoundRefinesAndRunsAreIdentical) {
 }
 
 TEST(TetgenMesher, BadParametersNameTheKey) {
-  const TriSurface s = remeshed(nested_spheres(), 2, 300);
+  const TriSurface s = remeshed(nested_spheres(), 2, 300).surface;
   auto message = [&](const TetgenParams& p) {
     try {
       mesh(s, p);

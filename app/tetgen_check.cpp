@@ -1,0 +1,166 @@
+#include "app/tetgen_check.h"
+
+#include "app/check_outputs.h"
+#include "app/cli_support.h"
+#include "app/export_outputs.h"
+#include "core/errors.h"
+#include "core/vtu_io.h"
+#include "mesher/conformity.h"
+#include "mesher/mesh_interfaces.h"
+#include "mesher/mesh_quality.h"
+#include "mesher/tetgen_mesher.h"
+#include "solver_check/tissue_motion.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+namespace tissuemesh::app {
+
+namespace {
+
+/// Area of every interface (p, q), mm^2.
+std::map<std::pair<int, int>, double> interface_areas(const TriSurface& s) {
+  std::map<std::pair<int, int>, double> areas;
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    const auto& k = s.triangles[t];
+    areas[{s.labels[t][0], s.labels[t][1]}] +=
+        0.5 * (s.points[k[1]] - s.points[k[0]]).cross(s.points[k[2]] - s.points[k[0]]).norm();
+  }
+  return areas;
+}
+
+std::string region_name(const TetMesh& mesh, int id) { return id == 0 ? "outside" : mesh.tissue_names[id - 1]; }
+
+double percent(double value, double reference) { return reference != 0.0 ? 100.0 * (value - reference) / reference : 0.0; }
+
+struct SolvedMesh {
+  SolveResult solve;
+  TissueMotion target;
+};
+
+SolvedMesh solve_mesh(const TetMesh& mesh, const std::string& target, const JobConfig& config, Progress& progress) {
+  const Model model = build_job_model(mesh, config, progress);
+  SolvedMesh r;
+  r.solve = solve_builtin(model, progress);
+  for (const TissueMotion& m : tissue_motion(model, r.solve.displacements).tissues)
+    if (m.name == target) r.target = m;
+  return r;
+}
+
+nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, const JobConfig& config,
+                              const nlohmann::json& inputs, const std::string& cmd, Progress& progress, OutputDir& out) {
+  bool known = false;
+  for (const auto& name : mesh.tissue_names) known = known || name == target;
+  if (!known) throw InputError("--target: '" + target + "' is not a tissue of the mesh");
+
+  TriSurface surface;
+  {
+    auto stage = progress.stage("interfaces of the mesh");
+    surface = interface_surface(mesh);
+    stage.note(std::to_string(surface.triangles.size()) + " triangles");
+  }
+  const TetgenResult tg = tetgen_mesh(surface, config.mesh.tetgen, progress);
+  {
+    auto stage = progress.stage("write mesh_tetgen.vtu");
+    write_vtu(tg.mesh, out.stage("mesh_tetgen.vtu").string());
+  }
+  QualityReport q_mesh, q_tg;
+  ConformityReport c_mesh, c_tg;
+  std::map<std::pair<int, int>, double> a_mesh, a_tg;
+  {
+    auto stage = progress.stage("compare the meshes");
+    q_mesh = compute_quality(mesh);
+    q_tg = compute_quality(tg.mesh);
+    c_mesh = check_conformity(mesh);
+    c_tg = check_conformity(tg.mesh);
+    a_mesh = interface_areas(surface);
+    a_tg = interface_areas(interface_surface(tg.mesh));
+  }
+  const SolvedMesh s_mesh = solve_mesh(mesh, target, config, progress);
+  const SolvedMesh s_tg = solve_mesh(tg.mesh, target, config, progress);
+
+  TetgenCheck check;
+  check.both_converged = s_mesh.solve.converged && s_tg.solve.converged;
+  nlohmann::json tissues = nlohmann::json::array();
+  std::ostringstream text;
+  char line[256];
+  text << "\nTetGen cross-check (TetGen " << tg.switches << " on the " << surface.triangles.size()
+       << " boundary and interface triangles of MESH):\n";
+  std::snprintf(line, sizeof line, "  %-10s %10s %10s %14s %14s %8s %9s %9s\n", "tissue", "tets", "tets TG",
+                "volume [mm^3]", "TG [mm^3]", "diff [%]", "min [deg]", "TG [deg]");
+  text << line;
+  auto row = [&](const TissueQuality& a, const TissueQuality& b) {
+    const double diff = percent(b.volume_mm3, a.volume_mm3);
+    if (a.id != 0) check.max_volume_difference_percent = std::max(check.max_volume_difference_percent, std::abs(diff));
+    std::snprintf(line, sizeof line, "  %-10s %10zu %10zu %14.2f %14.2f %8.4f %9.2f %9.2f\n", a.name.c_str(), a.tets,
+                  b.tets, a.volume_mm3, b.volume_mm3, diff, a.min_dihedral_deg, b.min_dihedral_deg);
+    text << line;
+    tissues.push_back({{"tissue", a.name},
+                       {"mesh", {{"tets", a.tets}, {"nodes", a.vertices}, {"volume_mm3", a.volume_mm3},
+                                 {"min_dihedral_deg", a.min_dihedral_deg}, {"max_dihedral_deg", a.max_dihedral_deg},
+                                 {"tets_below_10deg", a.tets_below_10deg}, {"mean_radius_ratio", a.mean_radius_ratio}}},
+                       {"tetgen", {{"tets", b.tets}, {"nodes", b.vertices}, {"volume_mm3", b.volume_mm3},
+                                   {"min_dihedral_deg", b.min_dihedral_deg}, {"max_dihedral_deg", b.max_dihedral_deg},
+                                   {"tets_below_10deg", b.tets_below_10deg}, {"mean_radius_ratio", b.mean_radius_ratio}}},
+                       {"volume_difference_percent", diff}});
+  };
+  for (std::size_t i = 0; i < q_mesh.tissues.size(); ++i) row(q_mesh.tissues[i], q_tg.tissues[i]);
+  row(q_mesh.total, q_tg.total);
+
+  nlohmann::json interfaces = nlohmann::json::array();
+  text << "\n  interface            area [mm^2]     TG [mm^2]   diff [%]\n";
+  for (const auto& [pair, area] : a_mesh) {
+    const double other = a_tg.count(pair) ? a_tg.at(pair) : 0.0;
+    const std::string name = region_name(mesh, pair.first) + "|" + region_name(mesh, pair.second);
+    std::snprintf(line, sizeof line, "  %-18s %13.2f %13.2f %10.6f\n", name.c_str(), area, other, percent(other, area));
+    text << line;
+    interfaces.push_back({{"interface", name}, {"mesh_area_mm2", area}, {"tetgen_area_mm2", other},
+                          {"difference_percent", percent(other, area)}});
+  }
+
+  const Eigen::Vector3d d_mesh = s_mesh.target.mean_displacement_mm, d_tg = s_tg.target.mean_displacement_mm;
+  check.target_displacement_difference_percent = d_mesh.norm() > 0 ? 100.0 * (d_tg - d_mesh).norm() / d_mesh.norm() : 0.0;
+  text << "\n  " << target << " volume-mean displacement under gravity (built-in solver): MESH "
+       << format("%.4f", d_mesh.norm()) << " mm, TetGen " << format("%.4f", d_tg.norm()) << " mm, |difference| "
+       << format("%.3f", check.target_displacement_difference_percent) << " % of MESH's\n";
+  text << "  conforming: MESH " << (c_mesh.conforming() ? "yes" : "NO") << ", TetGen "
+       << (c_tg.conforming() ? "yes" : "NO") << "; largest tissue volume difference "
+       << format("%.4f", check.max_volume_difference_percent) << " %\n";
+  if (!check.both_converged)
+    text << "WARNING: a built-in solve did not converge (MESH: " << s_mesh.solve.message << "; TetGen: "
+         << s_tg.solve.message << ")\n";
+
+  nlohmann::json& record = check.record;
+  record = run_record_common(progress, cmd);
+  record["inputs"] = inputs;
+  record["config"] = {{"source", config.source}, {"effective_yaml", config.to_yaml()}};
+  record["tetgen"] = {{"version", "1.5 (Debian libtet1.5)"},
+                      {"switches", tg.switches},
+                      {"steiner_points", tg.steiner_points},
+                      {"input_triangles", surface.triangles.size()},
+                      {"mesh", out.final_path("mesh_tetgen.vtu").string()}};
+  record["tissues"] = tissues;
+  record["interfaces"] = interfaces;
+  record["conformity"] = {{"mesh", to_json(c_mesh)}, {"tetgen", to_json(c_tg)}};
+  record["max_volume_difference_percent"] = check.max_volume_difference_percent;
+  record["target"] = {{"tissue", target},
+                      {"mesh_mean_displacement_mm", vec(d_mesh)},
+                      {"tetgen_mean_displacement_mm", vec(d_tg)},
+                      {"difference_percent", check.target_displacement_difference_percent},
+                      {"mesh_solve", {{"converged", s_mesh.solve.converged}, {"message", s_mesh.solve.message}}},
+                      {"tetgen_solve", {{"converged", s_tg.solve.converged}, {"message", s_tg.solve.message}}}};
+  write_text_file(out.stage("check.json"), record.dump(2) + "\n");
+  std::cout << text.str();
+  return check;
+}
+
+}  // namespace tissuemesh::app

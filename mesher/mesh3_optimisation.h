@@ -1,0 +1,54 @@
+// The optimisation and sliver-repair steps after CGAL Mesh_3's Delaunay refinement, shared by the
+// direct pipeline (`direct:`) and the volume mesher of the surface pipeline (`volume:`); the keys
+// sit in those sections, flat. What each step does: CGAL Mesh_3 manual ("Optimization"),
+// mesher/boundary_slivers.h and mesher/sliver_flips.h. Times are seconds, angles degrees.
+#pragma once
+
+#include "core/tet_mesh.h"
+#include "core/yaml_map.h"
+#include "mesher/boundary_slivers.h"
+#include "mesher/sliver_flips.h"
+
+#include <string>
+#include <vector>
+
+namespace tissuemesh {
+
+struct Mesh3Optimisation {
+  bool lloyd = false;                   ///< Lloyd optimisation (slow; off by default)
+  bool odt = false;                     ///< ODT optimisation (slow; off by default)
+  double optimise_time_limit_s = 10.0;  ///< time limit of each of Lloyd / ODT, s
+  /// Sliver perturbation. Off by default: CGAL 5.5's perturber gives a different mesh on every
+  /// run (measured), and the same input must give the same output files.
+  bool perturb = false;
+  bool exude = true;                    ///< sliver exudation
+  double sliver_bound_deg = 15.0;       ///< dihedral angle the perturber / exuder aim for, degrees
+  double sliver_time_limit_s = 20.0;    ///< time limit of each of perturb / exude, s
+  /// Remove tets with a dihedral below this (degrees) that have >= 2 faces on the outer boundary
+  /// (flat caps no vertex move can repair; boundary_slivers.h). 0 = keep them.
+  double remove_boundary_slivers_deg = 10.0;
+  /// Improve tets with a dihedral below this (degrees) by 2-3 flips and edge removals inside one
+  /// tissue (sliver_flips.h): interfaces and volumes unchanged. 0 = off.
+  double flip_slivers_below_deg = 15.0;
+  /// Let those flips give a flat wedge on an interface to the neighbouring tissue (moves the
+  /// interface by the wedge's thickness; the moved volume is reported).
+  bool interface_flips = true;
+
+  /// Reads these keys from the open section map `m` (range-checked, the key named in errors);
+  /// keys absent keep the defaults above.
+  void read(YamlMap& m);
+  /// Writes these keys into an open map of `out`.
+  void emit(YAML::Emitter& out) const;
+};
+
+/// What the sliver repairs did to a mesh.
+struct SliverRepair {
+  BoundarySliverRemoval boundary_slivers;  ///< flat caps removed from the outer boundary
+  SliverFlipResult sliver_flips;           ///< flips applied inside tissues
+};
+
+/// The repairs `options` asks for (remove_boundary_slivers_deg, flip_slivers_below_deg), on a
+/// mesh just extracted from CGAL; a mesh too large for them is left as it is, with a warning.
+SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings);
+
+}  // namespace tissuemesh
