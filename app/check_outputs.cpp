@@ -73,7 +73,7 @@ CalculixRun run_staged(const Model& model, const fs::path& inp, Progress& progre
   const CalculixRun run = run_calculix(inp.string(), kCalculixThreads);
   if (run.exit_code != 0)
     throw SolverError("CalculiX (ccx) failed with exit code " + std::to_string(run.exit_code) + " after " +
-                      format("%.1f", run.seconds) + " s on " + (fs::path(kFolder) / inp.filename()).string() +
+                      format_double("%.1f", run.seconds) + " s on " + (fs::path(kFolder) / inp.filename()).string() +
                       "; the end of its log:\n" + tail(run.log, kLogTailLines));
   std::set<std::string> names;
   for (const auto& entry : fs::directory_iterator(inp.parent_path()))
@@ -82,7 +82,7 @@ CalculixRun run_staged(const Model& model, const fs::path& inp, Progress& progre
     files.push_back(std::string(kFolder) + "/" + name);
     out.stage(files.back());
   }
-  stage.note("ccx finished in " + format("%.1f", run.seconds) + " s, exit code 0");
+  stage.note("ccx finished in " + format_double("%.1f", run.seconds) + " s, exit code 0");
   return run;
 }
 
@@ -132,7 +132,7 @@ SolveResult solve_builtin(const Model& model, Progress& progress) {
   auto stage = progress.stage("built-in solve");
   SolveOptions options;
   options.on_step = [&stage](const StepRecord& s) {
-    stage.note("load " + format("%.4g", s.load_fraction) + ": " + std::to_string(s.iterations) +
+    stage.note("load " + format_double("%.4g", s.load_fraction) + ": " + std::to_string(s.iterations) +
                (s.iterations == 1 ? " iteration" : " iterations") +
                (s.accepted ? "" : ", cut back: " + s.note));
   };
@@ -161,8 +161,8 @@ Model calculix_comparable_model(const Model& model, std::vector<std::string>& no
     m.C10_Pa = m.mu_Pa / 2.0;
     notes.push_back("tissue '" + model.tissue_names[t] +
                     "': compressible-neo-hookean has no exact CalculiX equivalent; both solvers use the uncoupled "
-                    "neo-hookean (Abaqus NEO HOOKE, C10 = mu/2 = " + format("%g", m.C10_Pa) + " Pa, same mu " +
-                    format("%g", m.mu_Pa) + " Pa and K " + format("%g", m.K_Pa) + " Pa) for this check");
+                    "neo-hookean (Abaqus NEO HOOKE, C10 = mu/2 = " + format_double("%g", m.C10_Pa) + " Pa, same mu " +
+                    format_double("%g", m.mu_Pa) + " Pa and K " + format_double("%g", m.K_Pa) + " Pa) for this check");
   }
   return comparable;
 }
@@ -204,7 +204,7 @@ CalculixCheck calculix_check_into(const Model& model, const JobConfig& job, cons
   c.comparison = compare_solutions(u_ccx, builtin.displacements);
   if (!builtin.converged)
     notes.push_back("built-in solve did not converge (" + builtin.message + "): the comparison is of its last "
-                    "accepted load fraction " + format("%g", builtin.load_fraction));
+                    "accepted load fraction " + format_double("%g", builtin.load_fraction));
 
   const double mm = 1.0 / length_from_mm(model.units, 1.0);  // mm per model length unit
   const nlohmann::json summary = model_summary_json(comparable);

@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <Eigen/Core>
+
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -24,8 +26,8 @@ int run_guarded(const std::string& command, const std::function<void()>& body);
 /// A Progress that prints one line when a stage starts, its notes, and its wall time at the end.
 Progress console_progress();
 
-/// printf-style formatting of one number, e.g. format("%.3f", x).
-std::string format(const char* fmt, double value);
+/// One 3-vector as a JSON array [x, y, z] (run records).
+nlohmann::json vec_json(const Eigen::Vector3d& v);
 
 /// The part of every run record that does not depend on the command: versions, peak memory,
 /// stage timings, command line.

@@ -10,7 +10,6 @@
 #include "app/tetgen_check.h"
 #include "core/errors.h"
 #include "core/output_dir.h"
-#include "core/vtu_io.h"
 
 #include <iostream>
 #include <memory>
@@ -50,14 +49,9 @@ void add_check_command(CLI::App& cli, Invocation& run) {
       if (opt->tetgen) {
         OutputDir out(opt->out);
         Progress progress = console_progress();
-        TetMesh mesh;
-        {
-          auto stage = progress.stage("read " + opt->mesh);
-          mesh = read_vtu(opt->mesh);
-        }
-        const nlohmann::json inputs = {{"mesh", std::filesystem::absolute(opt->mesh).string()},
-                                       {"config", std::filesystem::absolute(config.source).string()}};
-        const TetgenCheck check = tetgen_check_into(mesh, opt->target, config, inputs, run.command_line, progress, out);
+        const TetMesh mesh = read_job_mesh(opt->mesh, progress);
+        const TetgenCheck check = tetgen_check_into(mesh, opt->target, config, job_inputs(opt->mesh, config),
+                                                    run.command_line, progress, out);
         out.commit();
         std::cout << "wrote " << out.target().string() << "/check.json and " << out.target().string()
                   << "/mesh_tetgen.vtu\n";

@@ -106,15 +106,20 @@ Model build_job_model(const TetMesh& mesh, const JobConfig& config, Progress& pr
   return model;
 }
 
+TetMesh read_job_mesh(const std::string& mesh_path, Progress& progress) {
+  auto stage = progress.stage("read " + mesh_path);
+  return read_vtu(mesh_path);
+}
+
+nlohmann::json job_inputs(const std::string& mesh_path, const JobConfig& config) {
+  return {{"mesh", std::filesystem::absolute(mesh_path).string()},
+          {"config", std::filesystem::absolute(config.source).string()}};
+}
+
 JobModel read_job_model(const std::string& mesh_path, const JobConfig& config, Progress& progress) {
-  TetMesh mesh;
-  {
-    auto stage = progress.stage("read " + mesh_path);
-    mesh = read_vtu(mesh_path);
-  }
+  const TetMesh mesh = read_job_mesh(mesh_path, progress);
   JobModel job;
-  job.inputs = {{"mesh", std::filesystem::absolute(mesh_path).string()},
-                {"config", std::filesystem::absolute(config.source).string()}};
+  job.inputs = job_inputs(mesh_path, config);
   job.model = build_job_model(mesh, config, progress);
   return job;
 }

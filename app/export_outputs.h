@@ -25,6 +25,13 @@ struct JobModel {
   nlohmann::json inputs;  ///< {"mesh": ..., "config": ...}, absolute paths
 };
 
+/// Reads `mesh_path` (a .vtu of `tissuemesh mesh`) in a "read MESH" stage; InputError when it
+/// cannot be read.
+TetMesh read_job_mesh(const std::string& mesh_path, Progress& progress);
+
+/// The run record's "inputs" of a job on a mesh file: {"mesh": ..., "config": ...}, absolute paths.
+nlohmann::json job_inputs(const std::string& mesh_path, const JobConfig& config);
+
 /// Where `export`, `solve` and `check` start: reads `mesh_path` (a .vtu of `tissuemesh mesh`) in a
 /// "read MESH" stage, then build_job_model. Throws InputError for an unreadable mesh and what
 /// build_job_model throws.

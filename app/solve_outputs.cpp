@@ -20,8 +20,6 @@ namespace {
 
 const char* const kStressComponents[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
 
-nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
 std::string vec_text(const Eigen::Vector3d& v, const char* fmt) {
   return "(" + format_double(fmt, v.x()) + ", " + format_double(fmt, v.y()) + ", " + format_double(fmt, v.z()) + ")";
 }
@@ -133,8 +131,8 @@ nlohmann::json results_json(const Model& model, const SolveResult& r, const Moti
     const TissueMotion& m = motion.tissues[t];
     nlohmann::json j = {{"name", m.name},
                         {"volume_mm3", m.volume_mm3},
-                        {"centroid_mm", vec(m.centroid_mm)},
-                        {"centroid_displacement_mm", vec(m.mean_displacement_mm)},
+                        {"centroid_mm", vec_json(m.centroid_mm)},
+                        {"centroid_displacement_mm", vec_json(m.mean_displacement_mm)},
                         {"centroid_displacement_magnitude_mm", m.mean_displacement_mm.norm()},
                         {"max_von_mises_stress_Pa", vm}};
     if (J_min <= J_max) j.update({{"min_J", J_min}, {"max_J", J_max}});  // a tissue without elements has none
@@ -146,13 +144,13 @@ nlohmann::json results_json(const Model& model, const SolveResult& r, const Moti
       {"max_displacement_mm", motion.max_displacement_mm},
       {"max_displacement_node", motion.max_displacement_node + 1},
       {"tissues", tissues},
-      {"total_reaction_N", vec(reaction_N)},
-      {"total_weight_N", vec(weight_N)},
+      {"total_reaction_N", vec_json(reaction_N)},
+      {"total_weight_N", vec_json(weight_N)},
       {"reaction_vs_weight_rel", nullptr},
       {"reaction_vs_weight_rel_definition",
        "|total_reaction + load_fraction * total_weight| / |total_weight| (0 at equilibrium)"}};
   if (motion.max_displacement_node >= 0)
-    results["max_displacement_vector_mm"] = vec(r.displacements[motion.max_displacement_node] /
+    results["max_displacement_vector_mm"] = vec_json(r.displacements[motion.max_displacement_node] /
                                                 length_from_mm(model.units, 1.0));
   if (weight_N.norm() > 0.0)
     results["reaction_vs_weight_rel"] = (reaction_N + r.load_fraction * weight_N).norm() / weight_N.norm();

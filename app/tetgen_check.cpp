@@ -52,8 +52,6 @@ SolvedMesh solve_mesh(const TetMesh& mesh, const std::string& target, const JobC
   return r;
 }
 
-nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
 }  // namespace
 
 TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, const JobConfig& config,
@@ -130,11 +128,11 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   const Eigen::Vector3d d_mesh = s_mesh.target.mean_displacement_mm, d_tg = s_tg.target.mean_displacement_mm;
   check.target_displacement_difference_percent = d_mesh.norm() > 0 ? 100.0 * (d_tg - d_mesh).norm() / d_mesh.norm() : 0.0;
   text << "\n  " << target << " volume-mean displacement under gravity (built-in solver): MESH "
-       << format("%.4f", d_mesh.norm()) << " mm, TetGen " << format("%.4f", d_tg.norm()) << " mm, |difference| "
-       << format("%.3f", check.target_displacement_difference_percent) << " % of MESH's\n";
+       << format_double("%.4f", d_mesh.norm()) << " mm, TetGen " << format_double("%.4f", d_tg.norm()) << " mm, |difference| "
+       << format_double("%.3f", check.target_displacement_difference_percent) << " % of MESH's\n";
   text << "  conforming: MESH " << (c_mesh.conforming() ? "yes" : "NO") << ", TetGen "
        << (c_tg.conforming() ? "yes" : "NO") << "; largest tissue volume difference "
-       << format("%.4f", check.max_volume_difference_percent) << " %\n";
+       << format_double("%.4f", check.max_volume_difference_percent) << " %\n";
   if (!check.both_converged)
     text << "WARNING: a built-in solve did not converge (MESH: " << s_mesh.solve.message << "; TetGen: "
          << s_tg.solve.message << ")\n";
@@ -153,8 +151,8 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   record["conformity"] = {{"mesh", to_json(c_mesh)}, {"tetgen", to_json(c_tg)}};
   record["max_volume_difference_percent"] = check.max_volume_difference_percent;
   record["target"] = {{"tissue", target},
-                      {"mesh_mean_displacement_mm", vec(d_mesh)},
-                      {"tetgen_mean_displacement_mm", vec(d_tg)},
+                      {"mesh_mean_displacement_mm", vec_json(d_mesh)},
+                      {"tetgen_mean_displacement_mm", vec_json(d_tg)},
                       {"difference_percent", check.target_displacement_difference_percent},
                       {"mesh_solve", {{"converged", s_mesh.solve.converged}, {"message", s_mesh.solve.message}}},
                       {"tetgen_solve", {{"converged", s_tg.solve.converged}, {"message", s_tg.solve.message}}}};

@@ -4,6 +4,7 @@
 #include "core/errors.h"
 #include "mesher/mesh3_steps.h"
 #include "mesher/surface_pieces.h"
+#include "mesher/surface_quality.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
@@ -15,7 +16,8 @@
 #include <CGAL/make_mesh_3.h>
 
 #include <cmath>
-#include <sstream>
+#include <functional>
+#include <memory>
 #include <utility>
 
 namespace tissuemesh {
@@ -65,7 +67,6 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
   ComplexMeshResult result;
   std::vector<Polyhedron> polyhedra;
   std::vector<std::pair<int, int>> sides;
-  double mean_edge = 0.0;
   {
     auto stage = progress.stage("patch pieces");
     const SurfacePieces split = manifold_pieces(surface);
@@ -75,10 +76,6 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
       polyhedra.push_back(to_polyhedron(piece));
       sides.emplace_back(piece.pair[0], piece.pair[1]);
     }
-    std::size_t n = 0;
-    for (const auto& t : surface.triangles)
-      for (int e = 0; e < 3; ++e, ++n) mean_edge += (surface.points[t[e]] - surface.points[t[(e + 1) % 3]]).norm();
-    mean_edge /= static_cast<double>(std::max<std::size_t>(n, 1));
     stage.note(std::to_string(result.pieces) + " pieces, " + std::to_string(result.duplicated_vertices) +
                " vertices duplicated");
   }
@@ -96,7 +93,8 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
   const Sizing edge{&size_mm, params.surface_edge_factor};
   const Sizing facet{&size_mm, params.surface_edge_factor / std::sqrt(3.0)};
   const Sizing cell{&size_mm, params.cell_edge_factor * std::sqrt(6.0) / 4.0};
-  const double distance = params.facet_distance_mm > 0 ? params.facet_distance_mm : 0.1 * mean_edge;
+  const double distance =
+      params.facet_distance_mm > 0 ? params.facet_distance_mm : 0.1 * surface_quality(surface).mean_edge_mm;
   Criteria criteria(p::edge_size = edge, p::facet_angle = params.facet_angle_deg, p::facet_size = facet,
                     p::facet_distance = distance, p::cell_radius_edge_ratio = params.cell_radius_edge_ratio,
                     p::cell_size = cell);

@@ -6,17 +6,10 @@ namespace tissuemesh {
 
 namespace {
 
-double mean_edge_mm(const TriSurface& s) {
-  double sum = 0.0;
-  for (const auto& t : s.triangles)
-    for (int e = 0; e < 3; ++e) sum += (s.points[t[e]] - s.points[t[(e + 1) % 3]]).norm();
-  return s.triangles.empty() ? 0.0 : sum / (3.0 * static_cast<double>(s.triangles.size()));
-}
-
 void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, Progress& progress) {
   if (!r.checks.valid()) return;
   VolumeStage v;
-  v.size_mm = r.remesh ? r.remesh->edge_length_mm : mean_edge_mm(r.extraction.surface);
+  v.size_mm = r.remesh ? r.remesh->edge_length_mm : r.quality.mean_edge_mm;  // r.quality: of r.surface()
   const ApproachField* field = r.approach ? &*r.approach : nullptr;
   const double L = v.size_mm;
   const std::function<double(const Eigen::Vector3d&)> h = [L, field](const Eigen::Vector3d& p) {

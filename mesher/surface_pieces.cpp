@@ -39,7 +39,9 @@ SurfacePieces manifold_pieces(const TriSurface& s) {
 
   std::vector<int> parent(nt);
   std::iota(parent.begin(), parent.end(), 0);
-  // `inner` marks the edges inside a piece (joined): used again for the fans below.
+  // `inner` marks the edges inside a piece (joined), used again for the fans below: two triangles
+  // of one piece sharing an inner edge are joined across it (an edge with triangles of several
+  // pairs is a junction edge, so an inner edge joins triangles of one pair only).
   std::unordered_set<std::uint64_t> inner;
   for (const auto& [key, tris] : around) {
     if (junction_edges.count(key)) continue;
@@ -51,13 +53,9 @@ SurfacePieces manifold_pieces(const TriSurface& s) {
         inner.insert(key);
       }
   }
-  // An inner edge key alone does not say which pair it joins; a pair of triangles is joined
-  // across edge (a, b) when both are in the same piece and the edge is inner (two triangles of
-  // different pairs cannot be in one piece).
 
   SurfacePieces out;
   std::map<int, int> piece_of_root;  // root triangle -> piece index, in order of first triangle
-  std::vector<int> piece_of(nt);
   for (int t = 0; t < nt; ++t) {
     const int root = find(parent, t);
     auto [it, fresh] = piece_of_root.emplace(root, static_cast<int>(out.pieces.size()));
@@ -65,7 +63,6 @@ SurfacePieces manifold_pieces(const TriSurface& s) {
       out.pieces.emplace_back();
       out.pieces.back().pair = s.labels[t];
     }
-    piece_of[t] = it->second;
     out.pieces[it->second].source_triangles.push_back(t);
   }
 

@@ -6,6 +6,7 @@
 // and a short junction loop of the extraction.
 #include "mesher/complex_mesher.h"
 #include "mesher/conformity.h"
+#include "mesher/face_key.h"
 #include "mesher/mesh_quality.h"
 #include "mesher/surface_checks.h"
 #include "mesher/surface_pieces.h"
@@ -92,7 +93,7 @@ TEST(SurfacePieces, PatchesSplitAtJunctionsAndBorderOnlyThere) {
   std::set<std::uint64_t> junction;
   for (const auto& line : s.junctions)
     for (std::size_t i = 0; i + 1 < line.size(); ++i)
-      junction.insert(std::min(line[i], line[i + 1]) * 1000000ull + std::max(line[i], line[i + 1]));
+      junction.insert(edge_key(line[i], line[i + 1]));
   std::size_t triangles = 0;
   for (const SurfacePiece& piece : split.pieces) {
     triangles += piece.triangles.size();
@@ -107,7 +108,7 @@ TEST(SurfacePieces, PatchesSplitAtJunctionsAndBorderOnlyThere) {
         EXPECT_EQ(piece.points[local[e]], s.points[global[e]]);
         if (uses[std::minmax(local[e], local[(e + 1) % 3])] == 1) {
           const int a = global[e], b = global[(e + 1) % 3];
-          EXPECT_TRUE(junction.count(std::min(a, b) * 1000000ull + std::max(a, b)));
+          EXPECT_TRUE(junction.count(edge_key(a, b)));
         }
       }
     }
