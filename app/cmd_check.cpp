@@ -1,11 +1,13 @@
-// tissuemesh check MESH -c CONFIG -o DIR --calculix | --tetgen: cross-checks of a model.
+// tissuemesh check MESH -c CONFIG -o DIR --calculix | --tetgen | --gmsh: cross-checks of a model.
 // --calculix solves it with CalculiX and with the built-in solver and compares the displacements
 // node by node (DIR/check.json, DIR/calculix/); --tetgen meshes MESH's geometry again with TetGen
-// and compares the meshes and their gravity solutions (DIR/check.json, DIR/mesh_tetgen.vtu).
+// and compares the meshes and their gravity solutions (DIR/check.json, DIR/mesh_tetgen.vtu); --gmsh
+// compares our element quality measures with the Gmsh SDK's (DIR/check.json, DIR/quality_gmsh.pos).
 #include "app/check_outputs.h"
 #include "app/cli_support.h"
 #include "app/commands.h"
 #include "app/export_outputs.h"
+#include "app/gmsh_check.h"
 #include "app/job_config.h"
 #include "app/tetgen_check.h"
 #include "core/errors.h"
@@ -20,6 +22,7 @@ namespace {
 struct CheckCliOptions : ModelJobOptions {
   bool calculix = false;
   bool tetgen = false;
+  bool gmsh = false;
   std::string target = "tumor";
 };
 }  // namespace
@@ -30,7 +33,8 @@ void add_check_command(CLI::App& cli, Invocation& run) {
       "check", "Cross-checks of the model of MESH + CONFIG: --calculix solves it with CalculiX (ccx) and with the "
                "built-in solver and compares the displacements (DIR/check.json, DIR/calculix/); --tetgen meshes "
                "MESH's tissue boundaries again with TetGen and compares meshes and gravity solutions "
-               "(DIR/check.json, DIR/mesh_tetgen.vtu)");
+               "(DIR/check.json, DIR/mesh_tetgen.vtu); --gmsh compares our element quality figures with the Gmsh "
+               "SDK's (DIR/check.json, DIR/quality_gmsh.pos)");
   add_model_job_options(*sub, *opt);
   sub->add_flag("--calculix", opt->calculix,
                 "CalculiX (ccx, 2 threads) against the built-in solver on the same deck: max and mean nodal "
@@ -40,12 +44,30 @@ void add_check_command(CLI::App& cli, Invocation& run) {
                 "TetGen 1.5 on MESH's boundary and interface triangles (config `tetgen:`): per-tissue volumes, "
                 "counts, dihedral angles, interface areas, and the --target tissue's mean displacement under "
                 "gravity on both meshes (built-in solver)");
+  sub->add_flag("--gmsh", opt->gmsh,
+                "the Gmsh SDK's gamma and SICN of every tet of MESH against our radius ratio and SICN: per-tissue "
+                "minima and means by both, largest per-tet difference; exit 1 when they disagree");
   sub->add_option("--target", opt->target, "tissue whose displacement --tetgen compares (default tumor)");
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("check", [&] {
       const JobConfig config = JobConfig::load(opt->config);
       if (!print_config_or_require_out(opt->print_config, config.to_yaml(), opt->out)) return;
-      if (opt->calculix == opt->tetgen) throw InputError("choose one cross-check: --calculix or --tetgen");
+      if (int(opt->calculix) + int(opt->tetgen) + int(opt->gmsh) != 1)
+        throw InputError("choose one cross-check: --calculix, --tetgen or --gmsh");
+      if (opt->gmsh) {
+        OutputDir out(opt->out);
+        Progress progress = console_progress();
+        const TetMesh mesh = read_job_mesh(opt->mesh, progress);
+        const GmshCheck check =
+            gmsh_check_into(mesh, job_inputs(opt->mesh, config),
+                            {{"source", config.source}, {"effective_yaml", config.to_yaml()}}, run.command_line,
+                            progress, out);
+        out.commit();
+        std::cout << "wrote " << out.target().string() << "/check.json and " << out.target().string()
+                  << "/quality_gmsh.pos\n";
+        if (!check.agree) throw Error("Gmsh's element quality disagrees with ours (see check.json)");
+        return;
+      }
       if (opt->tetgen) {
         OutputDir out(opt->out);
         Progress progress = console_progress();

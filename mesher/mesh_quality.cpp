@@ -2,6 +2,8 @@
 
 #include "core/errors.h"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -36,6 +38,7 @@ TissueQuality empty_quality(std::string name, int id) {
   q.max_dihedral_deg = -std::numeric_limits<double>::infinity();
   q.min_radius_ratio = std::numeric_limits<double>::infinity();
   q.mean_radius_ratio = 0;  // running sum until finish()
+  q.min_sicn = std::numeric_limits<double>::infinity();
   return q;
 }
 
@@ -49,6 +52,7 @@ void accumulate(TissueQuality& q, const TetShape& s) {
   if (*lo < 5.0) ++q.tets_below_5deg;
   q.min_radius_ratio = std::min(q.min_radius_ratio, s.radius_ratio);
   q.mean_radius_ratio += s.radius_ratio;
+  q.min_sicn = std::min(q.min_sicn, s.sicn);
   auto& histogram = q.dihedral_histogram;
   for (double angle : s.dihedral_deg) ++histogram.counts[histogram_bin(histogram, angle)];
 }
@@ -57,7 +61,7 @@ void finish(TissueQuality& q, const std::vector<bool>& used_nodes, double refere
   q.vertices = static_cast<std::size_t>(std::count(used_nodes.begin(), used_nodes.end(), true));
   if (q.tets == 0) {
     q.min_dihedral_deg = q.max_dihedral_deg = TissueQuality::kUnknown;
-    q.min_radius_ratio = q.mean_radius_ratio = TissueQuality::kUnknown;
+    q.min_radius_ratio = q.mean_radius_ratio = q.min_sicn = TissueQuality::kUnknown;
   } else {
     q.mean_radius_ratio /= static_cast<double>(q.tets);
   }
@@ -83,6 +87,7 @@ nlohmann::json tissue_json(const TissueQuality& q) {
           {"tets_below_5deg", q.tets_below_5deg},
           {"min_radius_ratio", number_or_null(q.min_radius_ratio)},
           {"mean_radius_ratio", number_or_null(q.mean_radius_ratio)},
+          {"min_sicn", number_or_null(q.min_sicn)},
           {"dihedral_histogram",
            {{"bin_width_deg", q.dihedral_histogram.bin_width_deg},
             {"counts", q.dihedral_histogram.counts},
@@ -108,7 +113,7 @@ std::string table_row(const TissueQuality& q, int name_width) {
       << cell(q.reference_volume_mm3, 15, 2) << cell(100.0 * q.volume_error_rel, 9, 2)
       << cell(q.min_dihedral_deg, 9, 2) << cell(q.max_dihedral_deg, 9, 2) << std::setw(9)
       << q.tets_below_10deg << std::setw(9) << q.tets_below_5deg << cell(q.min_radius_ratio, 9, 3)
-      << cell(q.mean_radius_ratio, 9, 3) << "\n";
+      << cell(q.mean_radius_ratio, 9, 3) << cell(q.min_sicn, 9, 3) << "\n";
   return row.str();
 }
 
@@ -141,6 +146,23 @@ TetShape tet_shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
                             ad.squaredNorm() * n[3];
   const double denominator = area * m.norm();
   s.radius_ratio = denominator > 0 ? 3.0 * det * det / denominator : 0.0;
+
+  // SICN = 3 / (|E W^-1|_F |W E^-1|_F) with E = [ab ac ad] and W the same for the unit regular
+  // tet. E^-1 = adj(E) / det, whose rows are n[1..3], so SICN = 3 det / (|E W^-1|_F |W adj(E)|_F):
+  // again no division by a tiny det, and the sign of det carries the orientation.
+  static const Eigen::Matrix3d w = [] {
+    Eigen::Matrix3d m;
+    m.col(0) = Eigen::Vector3d(1, 0, 0);
+    m.col(1) = Eigen::Vector3d(0.5, std::sqrt(3.0) / 2, 0);
+    m.col(2) = Eigen::Vector3d(0.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0));
+    return m;
+  }();
+  static const Eigen::Matrix3d w_inverse = w.inverse();
+  Eigen::Matrix3d e, adjugate;
+  e << ab, ac, ad;
+  adjugate << n[1].transpose(), n[2].transpose(), n[3].transpose();
+  const double sicn_denominator = (e * w_inverse).norm() * (w * adjugate).norm();
+  s.sicn = sicn_denominator > 0 ? 3.0 * det / sicn_denominator : 0.0;
   return s;
 }
 
@@ -213,12 +235,13 @@ std::string format_quality_table(const QualityReport& report) {
          << "tets" << std::setw(10) << "vertices" << std::setw(15) << "volume[mm^3]"
          << std::setw(15) << "ref.vol[mm^3]" << std::setw(9) << "err[%]" << std::setw(9)
          << "min[deg]" << std::setw(9) << "max[deg]" << std::setw(9) << "<10deg" << std::setw(9)
-         << "<5deg" << std::setw(9) << "min RR" << std::setw(9) << "mean RR" << "\n";
+         << "<5deg" << std::setw(9) << "min RR" << std::setw(9) << "mean RR" << std::setw(9) << "min SICN" << "\n";
   std::string out = header.str();
   for (const auto& q : report.tissues) out += table_row(q, name_width);
   out += table_row(report.total, name_width);
   out += "min/max: dihedral angles; <10deg, <5deg: tets with a dihedral below; RR: radius ratio "
-         "3r/R (1 = regular); err: volume vs reference\n";
+         "3r/R (1 = regular, Gmsh's gamma); SICN: Gmsh's signed inverse condition number (1 = regular, < 0 "
+         "inverted); err: volume vs reference\n";
   return out;
 }
 

@@ -1,8 +1,9 @@
 // Element quality of a multi-material tetrahedral mesh, per tissue and in total.
 //
 // Shape measures follow the usual definitions (Shewchuk, "What is a good linear finite element?",
-// 2002): the six interior dihedral angles, and the normalised radius ratio 3 r / R (inradius over
-// circumradius, 1 for the regular tetrahedron, 0 for a degenerate one). Small dihedral angles
+// 2002): the six interior dihedral angles, the normalised radius ratio 3 r / R (inradius over
+// circumradius, 1 for the regular tetrahedron, 0 for a degenerate one; Gmsh calls it gamma), and
+// Gmsh's signed inverse condition number SICN (see TetShape::sicn). Small dihedral angles
 // spoil the conditioning of the stiffness matrix, angles near 180 degrees spoil interpolation, so
 // both ends of the angle range are reported. Volume fidelity against a reference (e.g. the voxel
 // volume of each tissue) is reported next to the shape measures because a mesher that loses thin
@@ -40,6 +41,11 @@ struct TetShape {
   /// 3 * inradius / circumradius in [0, 1]: 1 for the regular tet, 0 for a degenerate one
   /// (coplanar or coincident nodes). Independent of orientation.
   double radius_ratio;
+  /// Signed inverse condition number as Gmsh defines it for a linear tet: with A the affine map
+  /// from the unit regular tetrahedron to this one, 3 / (|A|_F |A^-1|_F), negative when the tet
+  /// is inverted. 1 for the regular tet, 0 for a degenerate one, sqrt(2/3) for the right-corner
+  /// tet; in [-1, 1].
+  double sicn;
   /// Signed volume, mm^3: positive for a positively oriented tet (see TetMesh), negative inverted.
   double volume_mm3;
 };
@@ -78,6 +84,7 @@ struct TissueQuality {
   std::size_t tets_below_5deg = 0;         ///< tets with any dihedral angle < 5 degrees
   double min_radius_ratio = kUnknown;      ///< NaN without tets
   double mean_radius_ratio = kUnknown;     ///< NaN without tets
+  double min_sicn = kUnknown;              ///< smallest TetShape::sicn; NaN without tets
   DihedralHistogram dihedral_histogram;
 };
 

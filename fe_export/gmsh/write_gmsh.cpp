@@ -9,6 +9,7 @@
 #include "fe_export/gmsh/write_gmsh.h"
 
 #include "core/errors.h"
+#include "fe_export/gmsh/gmsh_session.h"
 
 #include <gmsh.h>
 
@@ -24,22 +25,6 @@ constexpr int kTet4 = 4, kTet10 = 11, kTri3 = 2, kTri6 = 9, kPoint = 15;  // Gms
 // Gmsh's tet10 differs from VTK's/the Model's in the last two midside nodes: Gmsh slot 8 is edge
 // (2,3), slot 9 edge (1,3) (gmsh::model::mesh::getElementProperties(11) local coordinates).
 constexpr std::array<int, 10> kModelSlotOfGmshTet10{0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
-
-// gmsh::initialize / finalize around one write, also when something throws.
-struct GmshSession {
-  GmshSession() {
-    gmsh::initialize(0, nullptr, false);  // no user config files: the output must not depend on them
-    gmsh::option::setNumber("General.Terminal", 0);
-  }
-  ~GmshSession() {
-    try {
-      gmsh::finalize();
-    } catch (...) {
-    }
-  }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
 
 void build(const Model& model) {
   const std::size_t n_nodes = model.nodes.size();

@@ -1,7 +1,9 @@
-// `tissuemesh check --calculix` through the program: on the block of tests/support/model_fixture.h
-// with one tissue of each kind of law (a compressible neo-Hookean to be replaced, a Mooney-Rivlin
-// and an Ogden kept), the built-in solver and CalculiX agree within 1% of the max displacement;
-// bad requests and a missing or failing ccx are refused with their exit codes and nothing written.
+// `tissuemesh check` through the program, on the block of tests/support/model_fixture.h with one
+// tissue of each kind of law (a compressible neo-Hookean to be replaced, a Mooney-Rivlin and an
+// Ogden kept): --calculix, the built-in solver and CalculiX agree within 1% of the max
+// displacement; --tetgen, TetGen's mesh of the same geometry moves the tumor alike; --gmsh, Gmsh's
+// gamma and SICN equal ours on every tet. Bad requests and a missing or failing ccx are refused
+// with their exit codes and nothing written.
 #include "cli/cli_runner.h"
 #include "core/vtu_io.h"
 #include "solver_check/calculix_run.h"
@@ -16,6 +18,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <random>
 
 using namespace tissuemesh;
 using test::files_below;
@@ -113,7 +116,7 @@ TEST_F(Check, CalculixAndBuiltInAgreeOnTheBlock) {
 TEST_F(Check, WithoutACrossCheckIsBadInput) {
   const auto r = run_cli("check block.vtu -c block.yaml -o out", dir);
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("choose one cross-check: --calculix or --tetgen"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("choose one cross-check: --calculix, --tetgen or --gmsh"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 }
 
@@ -172,6 +175,39 @@ TEST_F(Check, TetgenMeshesTheSameGeometryAndMovesTheTumorAlike) {
   EXPECT_LE(d, 100.0 * test::kCrossMeshDisplacementRel);
   EXPECT_GT(d, 0.0);  // two different meshes: a zero difference would mean one solve was reused
   EXPECT_NE(r.out.find("TetGen cross-check"), std::string::npos);
+}
+
+TEST_F(Check, GmshComputesTheSameGammaAndSicnAsWeDoOnEveryTet) {
+  // The block's tets are all alike; jitter its nodes so that shapes spread from regular-ish to
+  // flat, and some tets invert (SICN's sign must agree too). Deterministic: mt19937's raw output.
+  TetMesh mesh = test::block_mesh();
+  std::mt19937 random(7);
+  for (auto& p : mesh.points)
+    for (int c = 0; c < 3; ++c) p[c] += 1.2 * (static_cast<double>(random()) / std::mt19937::max() - 0.5);
+  write_vtu(mesh, (dir / "jittered.vtu").string());
+  const auto r = run_cli("check jittered.vtu -c block.yaml -o out --gmsh", dir);
+  std::cout << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const std::string& f : files_below(dir / "out"))
+    EXPECT_TRUE(f == "check.json" || f == "quality_gmsh.pos") << "unexpected output " << f;
+  const auto record = nlohmann::json::parse(read_file(dir / "out/check.json"));
+  EXPECT_TRUE(record["agree"].get<bool>());
+  EXPECT_LE(record["max_gamma_difference"].get<double>(), test::kGmshPrintedQualityAbs);
+  EXPECT_LE(record["max_sicn_difference"].get<double>(), test::kGmshPrintedQualityAbs);
+  // The comparison covered a real spread of shapes, inverted ones included.
+  const auto& all = record["tissues"].back();
+  ASSERT_EQ(all["tissue"], "all tissues");
+  EXPECT_EQ(all["tets"], mesh.tets.size());
+  EXPECT_LT(all["gamma"]["min_gmsh"].get<double>(), 0.3);
+  EXPECT_GT(all["gamma"]["mean_gmsh"].get<double>(), 0.5);
+  EXPECT_LT(all["sicn"]["min_gmsh"].get<double>(), 0.0);
+  EXPECT_NEAR(all["sicn"]["min_ours"].get<double>(), all["sicn"]["min_gmsh"].get<double>(), test::kGmshPrintedQualityAbs);
+  EXPECT_EQ(record["gmsh"]["version"].get<std::string>().rfind("4.8", 0), 0u) << record["gmsh"]["version"];
+  // One Gmsh record per tet in the statistics view the user can open in Gmsh.
+  const std::string pos = read_file(dir / "out/quality_gmsh.pos");
+  std::size_t records = 0;
+  for (std::size_t at = pos.find("\nSS("); at != std::string::npos; at = pos.find("\nSS(", at + 1)) ++records;
+  EXPECT_EQ(records, mesh.tets.size());
 }
 
 TEST_F(Check, TetgenWithAnUnknownTargetIsBadInput) {

@@ -78,6 +78,7 @@ TEST(TetShape, RegularTetHasAllDihedralsAcosOneThirdAndRadiusRatioOne) {
     EXPECT_NEAR(angle, std::acos(1.0 / 3.0) * kRadToDeg, kAngleDeg);  // 70.5288 degrees
   }
   EXPECT_NEAR(s.radius_ratio, 1.0, kRelativeRoundoff);
+  EXPECT_NEAR(s.sicn, 1.0, kRelativeRoundoff);  // the map from the unit regular tet is a similarity
   // Edge length sqrt(8): volume a^3 / (6 sqrt(2)) = 8/3; the node order above is positive.
   EXPECT_NEAR(s.volume_mm3, 8.0 / 3.0, kRelativeRoundoff);
 }
@@ -94,6 +95,11 @@ TEST(TetShape, RightCornerTetHasRightAnglesAtTheCornerEdges) {
   // Inradius 3V/area with V = 1/6 and area 3/2 + sqrt(3)/2; circumradius sqrt(3)/2 (unit cube's).
   const double inradius = 0.5 / (1.5 + std::sqrt(3.0) / 2.0);
   EXPECT_NEAR(s.radius_ratio, 3.0 * inradius / (std::sqrt(3.0) / 2.0), kRelativeRoundoff);
+  // A = W^-1 maps the unit regular tet (edge vectors W) onto this one. A A^T is the inverse of
+  // the regular tet's edge Gram matrix (1 on the diagonal, 1/2 off it; eigenvalues 2, 1/2, 1/2),
+  // so |A|_F^2 = 1/2 + 2 + 2, |A^-1|_F^2 = 3 and SICN = 3 / sqrt(27/2) = sqrt(2/3). Gmsh 4.8
+  // prints 0.816497.
+  EXPECT_NEAR(s.sicn, std::sqrt(2.0 / 3.0), kRelativeRoundoff);
   EXPECT_NEAR(s.volume_mm3, 1.0 / 6.0, kRelativeRoundoff);
 }
 
@@ -144,9 +150,11 @@ TEST(TetShape, NearlyFlatSliverAnglesAreAccurate) {
 
 TEST(TetShape, FlatAndCollapsedTetsHaveRadiusRatioZero) {
   EXPECT_EQ(shape_of(sliver(0.0)).radius_ratio, 0.0);
+  EXPECT_EQ(shape_of(sliver(0.0)).sicn, 0.0);
   const TetShape collapsed = shape_of({Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(1, 0, 0),
                                        Vector3d(0, 1, 0)});
   EXPECT_EQ(collapsed.radius_ratio, 0.0);
+  EXPECT_EQ(collapsed.sicn, 0.0);
   EXPECT_EQ(collapsed.volume_mm3, 0.0);
 }
 
@@ -162,6 +170,7 @@ TEST(TetShape, ShapeIsInvariantUnderRotationTranslationAndUniformScaling) {
   const TetShape a = shape_of(p), b = shape_of(q);
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(a.dihedral_deg[i], b.dihedral_deg[i], kAngleDeg);
   EXPECT_NEAR(a.radius_ratio, b.radius_ratio, kRelativeRoundoff);
+  EXPECT_NEAR(a.sicn, b.sicn, kRelativeRoundoff);
   EXPECT_NEAR(b.volume_mm3, scale * scale * scale * a.volume_mm3,
               kRelativeRoundoff * std::abs(b.volume_mm3));
 }
@@ -174,6 +183,8 @@ TEST(TetShape, InvertedTetHasTheSameShapeAndNegativeVolume) {
   ASSERT_GT(a.volume_mm3, 0.0);
   EXPECT_NEAR(b.volume_mm3, -a.volume_mm3, kRelativeRoundoff * a.volume_mm3);
   EXPECT_NEAR(b.radius_ratio, a.radius_ratio, kRelativeRoundoff);
+  EXPECT_NEAR(b.sicn, -a.sicn, kRelativeRoundoff);  // SICN is the one signed shape measure
+  EXPECT_GT(a.sicn, 0.0);
   const std::array<int, 6> swapped_edge{0, 2, 1, 4, 3, 5};  // kTetEdges index after c <-> d
   for (int i = 0; i < 6; ++i) {
     EXPECT_NEAR(b.dihedral_deg[swapped_edge[i]], a.dihedral_deg[i], kAngleDeg);
@@ -317,7 +328,7 @@ TEST(MeshQuality, JsonRoundTripKeepsEveryKeyAndValue) {
   const char* keys[] = {"name", "id", "tets", "vertices", "volume_mm3", "reference_volume_mm3",
                         "volume_error_rel", "min_dihedral_deg", "max_dihedral_deg",
                         "tets_below_10deg", "tets_below_5deg", "min_radius_ratio",
-                        "mean_radius_ratio", "dihedral_histogram"};
+                        "mean_radius_ratio", "min_sicn", "dihedral_histogram"};
   for (const nlohmann::json& t : {j["tissues"][0], j["tissues"][1], j["total"]}) {
     for (const char* key : keys) EXPECT_TRUE(t.contains(key)) << key;
     EXPECT_EQ(t["dihedral_histogram"]["counts"].size(), 36u);

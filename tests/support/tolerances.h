@@ -49,6 +49,12 @@ constexpr double kComplexMeshVolumeRel = 0.04;
 /// each mesh and is not held to it).
 constexpr double kCrossMeshDisplacementRel = 0.05;
 
+/// Gmsh's element quality (gamma, SICN; values in [-1, 1]) against ours for the same tet: Gmsh
+/// 4.8 writes them with "%g", 6 significant digits, so half a unit of the 6th digit (5e-7) plus
+/// round-off; a different formula (e.g. an unsigned SICN, or the mean ratio instead of the
+/// radius ratio) is off by 1e-2 or more.
+constexpr double kGmshPrintedQualityAbs = 1e-6;
+
 /// Smallest dihedral angle of a CGAL mesh of a smooth test complex (nested spheres, no junction)
 /// after exudation and sliver flips (default VolumeMeshParams): issue #6's bound for the CGAL
 /// mesh; measured 13.1 degrees.
