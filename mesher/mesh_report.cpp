@@ -4,6 +4,7 @@
 #include "mesher/mesh_quality.h"
 
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
 namespace tissuemesh {
@@ -157,6 +158,74 @@ std::string table1_row(const char* name, const SurfaceQuality& q) {
          fmt("  %7.4f  %6.4f  %6.4f", q.p30_percent, q.q_average, q.q_min) + fmt("  %14.3f\n", q.mean_edge_mm);
 }
 
+
+// The paper's Table 2: vertices and cells of each tissue after each step (1 extracted surface,
+// 2 remeshed surface, 3 tet mesh), plus a row for the whole complex. A surface vertex on an
+// interface counts in both tissues, as in the paper; the whole-complex row counts it once.
+struct StepCounts {
+  std::size_t vertices = 0, cells = 0;
+};
+struct StepsRow {
+  std::string tissue;
+  StepCounts extracted;
+  std::optional<StepCounts> remeshed, volume;
+};
+
+std::vector<StepsRow> steps_table(const SurfaceJobResult& r) {
+  std::vector<StepsRow> rows;
+  const auto& extracted = r.extraction.checks.tissues;
+  for (std::size_t t = 0; t < extracted.size(); ++t) {
+    StepsRow row;
+    row.tissue = extracted[t].name;
+    row.extracted = {extracted[t].vertices, extracted[t].triangles};
+    if (r.remesh) row.remeshed = StepCounts{r.remesh->checks.tissues[t].vertices, r.remesh->checks.tissues[t].triangles};
+    if (r.volume) row.volume = StepCounts{r.volume->quality.tissues[t].vertices, r.volume->quality.tissues[t].tets};
+    rows.push_back(row);
+  }
+  StepsRow all;
+  all.tissue = "all tissues";
+  all.extracted = {r.extraction.surface.points.size(), r.extraction.surface.triangles.size()};
+  if (r.remesh) all.remeshed = StepCounts{r.remesh->surface.points.size(), r.remesh->surface.triangles.size()};
+  if (r.volume) all.volume = StepCounts{r.volume->meshing.mesh.points.size(), r.volume->meshing.mesh.tets.size()};
+  rows.push_back(all);
+  return rows;
+}
+
+nlohmann::json table2_json(const std::vector<StepsRow>& rows) {
+  auto counts = [](const std::optional<StepCounts>& c, const char* cells) {
+    return c ? nlohmann::json{{"vertices", c->vertices}, {cells, c->cells}} : nlohmann::json(nullptr);
+  };
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& row : rows)
+    j.push_back({{"tissue", row.tissue},
+                 {"extracted_surface", counts(row.extracted, "triangles")},
+                 {"remeshed_surface", counts(row.remeshed, "triangles")},
+                 {"tet_mesh", counts(row.volume, "tets")}});
+  return j;
+}
+
+std::string table2_text(const std::vector<StepsRow>& rows) {
+  std::ostringstream o;
+  o << "Table 2 (vertices and cells after each step)\n"
+    << "                    1 extracted surface    2 remeshed surface         3 tet mesh\n"
+    << "  tissue             vertices  triangles    vertices  triangles    vertices       tets\n";
+  auto pair = [](const std::optional<StepCounts>& c) {
+    char cell[64];
+    if (c)
+      std::snprintf(cell, sizeof cell, "  %10zu %10zu", c->vertices, c->cells);
+    else
+      std::snprintf(cell, sizeof cell, "  %10s %10s", "-", "-");
+    return std::string(cell);
+  };
+  for (const auto& row : rows) {
+    char name[64];
+    std::snprintf(name, sizeof name, "  %-16s", row.tissue.c_str());
+    o << name << pair(row.extracted) << pair(row.remeshed) << pair(row.volume) << "\n";
+  }
+  o << "  (a vertex on an interface counts in each tissue it bounds; the last row counts it once)\n";
+  return o.str();
+}
+
 }  // namespace
 
 nlohmann::json surface_job_json(const SurfaceJobResult& r) {
@@ -234,6 +303,8 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
     vj["warnings"] = v.meshing.warnings;
     j["volume_mesh"] = vj;
   }
+  j["table2_steps"] = table2_json(steps_table(r));
+  if (r.volume) j["table3_total_cells"] = r.volume->meshing.mesh.tets.size();
   return j;
 }
 
@@ -267,7 +338,7 @@ std::string surface_job_text(const SurfaceJobResult& r) {
   o << "\nTable 1 (triangle quality)    avg min angle [deg]  min angle [deg]  P30 [%]   Q_av    Q_min   mean edge [mm]\n";
   if (r.remesh) o << table1_row("extracted", r.extracted_quality);
   o << table1_row(r.remesh ? "remeshed" : "extracted", r.quality) << "\n";
-  o << "Table 2 and checks  vertices  triangles  closed+oriented  intersecting pairs  volume [mm^3]  voxel volume [mm^3]  error [%]\n";
+  o << "surface checks      vertices  triangles  closed+oriented  intersecting pairs  volume [mm^3]  voxel volume [mm^3]  error [%]\n";
   for (const auto& t : r.checks.tissues) {
     char line[256];
     std::snprintf(line, sizeof line, "  %-16s  %8zu  %9zu  %15s  %18lld  %13.1f  %19.1f  %9.3f\n", t.name.c_str(),
@@ -279,6 +350,8 @@ std::string surface_job_text(const SurfaceJobResult& r) {
     << " (" << r.checks.junction_edges_off_junction << " not where >= 3 triangles meet)\n";
   o << (r.checks.valid() ? "surface valid: every tissue closed, oriented and intersection free\n"
                          : "WARNING: the surface fails a check above; no volume mesh\n");
+  o << "\n" << table2_text(steps_table(r));
+  if (r.volume) o << "Table 3 (total cells): " << r.volume->meshing.mesh.tets.size() << " tets\n";
   if (r.volume) {
     const VolumeStage& v = *r.volume;
     o << "\nvolume mesh (CGAL Mesh_3 from the surface, size field edge " << fmt("%.3f mm", v.size_mm) << "): "

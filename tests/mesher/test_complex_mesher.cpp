@@ -3,11 +3,14 @@
 // triple junction that must stay conforming) are meshed; every mesh is conforming, keeps the
 // interfaces of the surface and no others, and each tissue's volume is the one its surface
 // encloses up to the boundary approximation. Also the manifold pieces the domain is built from,
-// and a short junction loop of the extraction.
+// a short junction loop of the extraction, and the paper's Tables 2 and 3 in the surface report.
 #include "mesher/complex_mesher.h"
 #include "mesher/conformity.h"
 #include "mesher/face_key.h"
+#include "mesher/mesh_config.h"
 #include "mesher/mesh_quality.h"
+#include "mesher/mesh_report.h"
+#include "mesher/surface_job.h"
 #include "mesher/surface_checks.h"
 #include "mesher/surface_pieces.h"
 #include "mesher/surface_projection.h"
@@ -16,6 +19,8 @@
 #include "support/tolerances.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include <map>
 #include <set>
@@ -150,4 +155,44 @@ TEST(SurfaceExtraction, AOneFaceContactKeepsItsVoxelSizedJunctionLoop) {
     for (std::size_t i = 0; i + 1 < line.size(); ++i, ++edges) length += (s.points[line[i]] - s.points[line[i + 1]]).norm();
   EXPECT_EQ(edges, 4u);
   EXPECT_NEAR(length, 4.0, kConstrainedCoordinateMm);
+}
+
+// The paper's Table 2 and 3 in the surface pipeline's report: every step's counts are those of
+// the surface or mesh that step produced, each tet is counted in exactly one tissue, and Table 3
+// is the tet mesh's total.
+TEST(SurfaceReport, Table2CountsEveryStepAndTable3TheTets) {
+  const MeshConfig config = MeshConfig::parse(
+      YAML::Load("pipeline: surface\ntissues:\n  - {name: a, labels: [1]}\n  - {name: b, labels: [2]}\n"
+                 "  - {name: c, labels: [3]}\nsurface: {target_vertices: 400}\n"),
+      "boxes.yaml");
+  Progress progress;
+  const SurfaceJobResult r = run_surface_job(three_boxes(), "boxes", config, progress);
+  ASSERT_TRUE(r.remesh && r.volume);
+  const nlohmann::json j = surface_job_json(r);
+  const nlohmann::json& rows = j["table2_steps"];
+  ASSERT_EQ(rows.size(), 4u);
+  const nlohmann::json& all = rows[3];
+  EXPECT_EQ(all["tissue"], "all tissues");
+  EXPECT_EQ(all["extracted_surface"]["vertices"], r.extraction.surface.points.size());
+  EXPECT_EQ(all["extracted_surface"]["triangles"], r.extraction.surface.triangles.size());
+  EXPECT_EQ(all["remeshed_surface"]["vertices"], 400);
+  EXPECT_EQ(all["remeshed_surface"]["triangles"], r.remesh->surface.triangles.size());
+  const TetMesh& m = r.volume->meshing.mesh;
+  EXPECT_EQ(all["tet_mesh"]["vertices"], m.points.size());
+  EXPECT_EQ(all["tet_mesh"]["tets"], m.tets.size());
+  std::size_t tets = 0;
+  for (int t = 0; t < 3; ++t) {
+    EXPECT_EQ(rows[t]["tissue"], std::string(1, static_cast<char>('a' + t)));
+    tets += rows[t]["tet_mesh"]["tets"].get<std::size_t>();
+    // A tissue's own vertices are part of the whole, fewer than it at every step.
+    for (const char* step : {"extracted_surface", "remeshed_surface", "tet_mesh"}) {
+      EXPECT_GT(rows[t][step]["vertices"].get<std::size_t>(), 0u) << step;
+      EXPECT_LT(rows[t][step]["vertices"].get<std::size_t>(), all[step]["vertices"].get<std::size_t>()) << step;
+    }
+  }
+  EXPECT_EQ(tets, m.tets.size());
+  EXPECT_EQ(j["table3_total_cells"], m.tets.size());
+  const std::string text = surface_job_text(r);
+  EXPECT_NE(text.find("Table 3 (total cells): " + std::to_string(m.tets.size()) + " tets"), std::string::npos) << text;
+  EXPECT_NE(text.find("Table 2 (vertices and cells after each step)"), std::string::npos);
 }
