@@ -277,9 +277,7 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
       c3t3, [&](double x, double y, double z) -> Eigen::Vector3d { return ids.origin + D * Eigen::Vector3d(x, y, z); },
       D.determinant() < 0, names);
   TetMesh& mesh = result.mesh;
-  const SliverRepair repair = repair_slivers(mesh, params.optimise, result.warnings);
-  result.boundary_slivers = repair.boundary_slivers;
-  result.sliver_flips = repair.sliver_flips;
+  result.repair = repair_slivers(mesh, params.optimise, result.warnings);
 
   // Which image components are covered by tets of their tissue? A tet credits the component of
   // the voxel under its centroid or, when that voxel has another tissue (the mesh boundary is

@@ -14,9 +14,8 @@
 #include "core/label_image.h"
 #include "core/progress.h"
 #include "core/tet_mesh.h"
-#include "mesher/boundary_slivers.h"
 #include "mesher/direct_mesh_params.h"
-#include "mesher/sliver_flips.h"
+#include "mesher/mesh3_optimisation.h"
 
 #include <Eigen/Core>
 
@@ -38,8 +37,7 @@ struct DirectMeshResult {
   std::size_t image_components = 0;      ///< 6-connected components over all tissues
   std::size_t initial_points = 0;        ///< surface points seeded before refinement
   std::vector<MissedComponent> missed;   ///< components not represented (reported, never hidden)
-  BoundarySliverRemoval boundary_slivers;  ///< flat caps removed from the outer boundary
-  SliverFlipResult sliver_flips;           ///< flips applied inside tissues
+  SliverRepair repair;                   ///< what the sliver repairs did
   /// Things the user must know, e.g. an optimiser stopped by its time limit (its result then
   /// depends on machine speed, so repeated runs may differ).
   std::vector<std::string> warnings;

@@ -15,6 +15,7 @@ void Mesh3Optimisation::read(YamlMap& m) {
   remove_boundary_slivers_deg = m.in_range("remove_boundary_slivers_deg", remove_boundary_slivers_deg, 0.0, 30.0);
   flip_slivers_below_deg = m.in_range("flip_slivers_below_deg", flip_slivers_below_deg, 0.0, 60.0);
   interface_flips = m.boolean("interface_flips", interface_flips);
+  smooth_slivers_below_deg = m.in_range("smooth_slivers_below_deg", smooth_slivers_below_deg, 0.0, 60.0);
 }
 
 void Mesh3Optimisation::emit(YAML::Emitter& out) const {
@@ -28,11 +29,13 @@ void Mesh3Optimisation::emit(YAML::Emitter& out) const {
   out << YAML::Key << "remove_boundary_slivers_deg" << YAML::Value << remove_boundary_slivers_deg;
   out << YAML::Key << "flip_slivers_below_deg" << YAML::Value << flip_slivers_below_deg;
   out << YAML::Key << "interface_flips" << YAML::Value << interface_flips;
+  out << YAML::Key << "smooth_slivers_below_deg" << YAML::Value << smooth_slivers_below_deg;
 }
 
 SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings) {
   SliverRepair r;
-  const bool wanted = options.remove_boundary_slivers_deg > 0 || options.flip_slivers_below_deg > 0;
+  const bool wanted = options.remove_boundary_slivers_deg > 0 || options.flip_slivers_below_deg > 0 ||
+                      options.smooth_slivers_below_deg > 0;
   if (wanted && mesh.points.size() >= kMaxFaceKeyNodes) {
     warnings.push_back("sliver repair skipped: the mesh has more than 2,097,151 nodes");
     return r;
@@ -41,6 +44,8 @@ SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std
     r.boundary_slivers = remove_boundary_slivers(mesh, options.remove_boundary_slivers_deg);
   if (options.flip_slivers_below_deg > 0)
     r.sliver_flips = flip_slivers(mesh, options.flip_slivers_below_deg, options.interface_flips);
+  if (options.smooth_slivers_below_deg > 0)
+    r.sliver_smoothing = smooth_slivers(mesh, options.smooth_slivers_below_deg);
   return r;
 }
 

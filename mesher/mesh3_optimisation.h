@@ -8,6 +8,7 @@
 #include "core/yaml_map.h"
 #include "mesher/boundary_slivers.h"
 #include "mesher/sliver_flips.h"
+#include "mesher/sliver_smoothing.h"
 
 #include <string>
 #include <vector>
@@ -30,6 +31,10 @@ struct Mesh3Optimisation {
   /// Improve tets with a dihedral below this (degrees) by 2-3 flips and edge removals inside one
   /// tissue (sliver_flips.h): interfaces and volumes unchanged. 0 = off.
   double flip_slivers_below_deg = 15.0;
+  /// Then move vertices inside one tissue (on no interface or boundary face) of tets with a
+  /// dihedral below this (degrees) to raise the smallest angle around them (sliver_smoothing.h):
+  /// interfaces, boundary and volumes unchanged. 0 = off.
+  double smooth_slivers_below_deg = 15.0;
   /// Let those flips give a flat wedge on an interface to the neighbouring tissue (moves the
   /// interface by the wedge's thickness; the moved volume is reported).
   bool interface_flips = true;
@@ -45,9 +50,11 @@ struct Mesh3Optimisation {
 struct SliverRepair {
   BoundarySliverRemoval boundary_slivers;  ///< flat caps removed from the outer boundary
   SliverFlipResult sliver_flips;           ///< flips applied inside tissues
+  SliverSmoothingResult sliver_smoothing;  ///< free vertices moved
 };
 
-/// The repairs `options` asks for (remove_boundary_slivers_deg, flip_slivers_below_deg), on a
+/// The repairs `options` asks for (remove_boundary_slivers_deg, flip_slivers_below_deg,
+/// smooth_slivers_below_deg; in that order), on a
 /// mesh just extracted from CGAL; a mesh too large for them is left as it is, with a warning.
 SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings);
 

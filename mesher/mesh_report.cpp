@@ -75,20 +75,28 @@ std::string mesh_summary_text(const TetMesh& mesh) {
 
 namespace {
 
-void add_sliver_repair_json(nlohmann::json& j, const BoundarySliverRemoval& b, const SliverFlipResult& f) {
+void add_sliver_repair_json(nlohmann::json& j, const SliverRepair& repair) {
+  const BoundarySliverRemoval& b = repair.boundary_slivers;
+  const SliverFlipResult& f = repair.sliver_flips;
   j["boundary_slivers_removed"] = {{"tets", b.tets_removed}, {"volume_mm3", b.volume_removed_mm3}};
   j["sliver_flips"] = {{"flips_2_3", f.flips_23},
                        {"edge_removals", f.edge_removals},
                        {"passes", f.passes},
                        {"interface_flips", f.interface_flips},
                        {"volume_moved_between_tissues_mm3", f.volume_relabelled_mm3}};
+  j["sliver_smoothing"] = {{"vertex_moves", repair.sliver_smoothing.moved_vertices},
+                           {"passes", repair.sliver_smoothing.passes}};
 }
 
-std::string sliver_repair_text(const BoundarySliverRemoval& b, const SliverFlipResult& f) {
+std::string sliver_repair_text(const SliverRepair& repair) {
+  const BoundarySliverRemoval& b = repair.boundary_slivers;
+  const SliverFlipResult& f = repair.sliver_flips;
   std::ostringstream s;
   s << "boundary slivers removed: " << b.tets_removed << " tets, " << fmt("%.4f mm^3\n", b.volume_removed_mm3);
   s << "sliver flips: " << f.flips_23 << " 2-3 flips, " << f.edge_removals << " edge removals (" << f.interface_flips
     << " across interfaces, " << fmt("%.4f mm^3 moved", f.volume_relabelled_mm3) << ") in " << f.passes << " passes\n";
+  s << "sliver smoothing: " << repair.sliver_smoothing.moved_vertices << " vertex moves (inside a tissue or within a flat boundary or interface) in "
+    << repair.sliver_smoothing.passes << " passes\n";
   return s.str();
 }
 
@@ -111,7 +119,7 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
   j["image_components"] = r.meshing.image_components;
   j["initial_surface_points"] = r.meshing.initial_points;
   j["components_not_meshed"] = missed;
-  add_sliver_repair_json(j, r.meshing.boundary_slivers, r.meshing.sliver_flips);
+  add_sliver_repair_json(j, r.meshing.repair);
   return j;
 }
 
@@ -123,7 +131,7 @@ std::string mesh_job_text(const MeshJobResult& r) {
   s << format_conformity_table(r.conformity, mesh.tissue_names) << "\n";
   s << "image components (6-connected, all tissues): " << r.meshing.image_components << "; not meshed: "
     << r.meshing.missed.size() << "\n";
-  s << sliver_repair_text(r.meshing.boundary_slivers, r.meshing.sliver_flips);
+  s << sliver_repair_text(r.meshing.repair);
   for (const auto& w : r.meshing.warnings) s << "WARNING: " << w << "\n";
   for (const auto& m : r.meshing.missed)
     s << "  " << m.tissue << ": " << m.voxels << " voxels, " << fmt("%.2f mm^3 at (%.1f, ", m.volume_mm3, m.centroid_mm[0])
@@ -299,7 +307,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
     vj["quality"] = to_json(v.quality);
     vj["conformity"] = to_json(v.conformity);
     vj["conforming"] = v.conformity.conforming();
-    add_sliver_repair_json(vj, v.meshing.repair.boundary_slivers, v.meshing.repair.sliver_flips);
+    add_sliver_repair_json(vj, v.meshing.repair);
     vj["warnings"] = v.meshing.warnings;
     j["volume_mesh"] = vj;
   }
@@ -359,7 +367,7 @@ std::string surface_job_text(const SurfaceJobResult& r) {
       << " patch pieces\n\n";
     o << format_quality_table(v.quality) << "\n";
     o << format_conformity_table(v.conformity, v.meshing.mesh.tissue_names) << "\n";
-    o << sliver_repair_text(v.meshing.repair.boundary_slivers, v.meshing.repair.sliver_flips);
+    o << sliver_repair_text(v.meshing.repair);
     for (const auto& w : v.meshing.warnings) o << "WARNING: " << w << "\n";
   }
   return o.str();

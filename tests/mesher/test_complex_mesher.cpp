@@ -67,7 +67,7 @@ TEST(ComplexMesher, ThreeBoxesKeepTheirTripleJunctionInterfaces) {
   EXPECT_TRUE(c.conforming());
   EXPECT_EQ(interfaces(c), (std::set<std::pair<int, int>>{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}));
   expect_surface_volumes(r.mesh, s.surface);
-  EXPECT_GE(compute_quality(r.mesh).total.min_dihedral_deg, kComplexMeshJunctionMinDihedralDeg);
+  EXPECT_GE(compute_quality(r.mesh).total.min_dihedral_deg, kComplexMeshMinDihedralDeg);
   // The triple line x = y = 14.5 voxels stays sharp: mesh nodes lie on it (protected feature).
   const Eigen::Vector3d origin(-3.0, 2.0, 7.0);
   std::size_t on_line = 0;

@@ -1,10 +1,13 @@
 // Sliver repair passes on a real CGAL mesh: flips must keep tissue volumes, interfaces and
-// conformity exactly and only raise quality; boundary peeling only removes flat outer caps.
+// conformity exactly and only raise quality; boundary peeling only removes flat outer caps;
+// smoothing moves only nodes whose moves leave every tissue's boundary where it was.
 #include "mesher/boundary_slivers.h"
 #include "mesher/conformity.h"
 #include "mesher/direct_mesher.h"
 #include "mesher/mesh_quality.h"
 #include "mesher/sliver_flips.h"
+#include "mesher/sliver_smoothing.h"
+#include "support/model_fixture.h"
 #include "support/test_helpers.h"
 #include "support/tolerances.h"
 
@@ -13,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <array>
 #include <map>
 #include <set>
@@ -32,6 +36,7 @@ TetMesh unrepaired_mesh() {
   p.optimise.exude = false;
   p.optimise.remove_boundary_slivers_deg = 0;
   p.optimise.flip_slivers_below_deg = 0;
+  p.optimise.smooth_slivers_below_deg = 0;
   Progress progress;
   return mesh_labels_direct(img, {"outer", "inner"}, p, progress).mesh;
 }
@@ -148,4 +153,78 @@ TEST(BoundarySlivers, RemoveOnlyFlatOuterCaps) {
   // The inner sphere never touches the outside, so none of its tets can be a boundary cap.
   EXPECT_EQ(r.removed_per_tissue[1], 0u);
   EXPECT_EQ(after.tissues[1].tets, before.tissues[1].tets);
+}
+
+namespace {
+
+// A 8 x 8 x 4 mm box on a 2 mm grid whose node at `at` (mm) is pushed by `by`: its tets turn
+// into slivers. Returns the node's index.
+int push_node(TetMesh& mesh, const Eigen::Vector3d& at, const Eigen::Vector3d& by) {
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if ((mesh.points[i] - at).norm() < 1e-12) {
+      mesh.points[i] += by;
+      return static_cast<int>(i);
+    }
+  ADD_FAILURE() << "no node at " << at.transpose();
+  return 0;
+}
+
+}  // namespace
+
+// A free node (inside the box) and a node of the flat bottom face are pushed along grid diagonals
+// until their tets are slivers. Smoothing moves them back to good positions: the free node
+// anywhere, the bottom node only within its plane (z stays exactly 0, so the box keeps its
+// shape), nothing else of the topology or any volume changes.
+TEST(SliverSmoothing, MovesFreeAndFlatBoundaryNodesWithoutChangingTheBox) {
+  TetMesh mesh = test::box_mesh({0, 0, 0}, {8, 8, 4}, 4, 4, 2);
+  const int inner = push_node(mesh, {4, 4, 2}, {1.7, 1.7, 1.7});
+  const int bottom = push_node(mesh, {4, 4, 0}, {1.8, 1.8, 0});
+  const QualityReport before = compute_quality(mesh);
+  ASSERT_EQ(check_conformity(mesh).inverted_tets, 0u);
+  ASSERT_LT(before.total.min_dihedral_deg, 10.0);
+  const auto tets = mesh.tets;
+  const auto faces = interface_faces(mesh);
+
+  const SliverSmoothingResult r = smooth_slivers(mesh, 15.0);
+  EXPECT_GE(r.moved_vertices, 2u);
+  EXPECT_EQ(mesh.tets, tets);  // positions only
+  EXPECT_EQ(interface_faces(mesh), faces);
+  EXPECT_EQ(mesh.points[static_cast<std::size_t>(bottom)].z(), 0.0);  // still on the bottom face
+  EXPECT_GT((mesh.points[static_cast<std::size_t>(inner)] - Eigen::Vector3d(5.7, 5.7, 3.7)).norm(), 0.1);
+  const QualityReport after = compute_quality(mesh);
+  EXPECT_NEAR(after.total.volume_mm3, 256.0, test::kRelativeRoundoff * 256.0);
+  EXPECT_EQ(check_conformity(mesh).inverted_tets, 0u);
+  std::cout << "[ smooth   ] box: min dihedral " << before.total.min_dihedral_deg << " -> "
+            << after.total.min_dihedral_deg << " deg\n";
+  EXPECT_GE(after.total.min_dihedral_deg, 15.0);  // the unpushed grid's tets are 35.3-90 degrees
+}
+
+// On a CGAL mesh of curved tissues only free nodes may move: every node on the boundary or an
+// interface keeps its position, so interfaces, boundary and each tissue's volume are unchanged.
+TEST(SliverSmoothing, KeepsCurvedInterfacesAndVolumesOfACgalMeshAndRaisesQuality) {
+  TetMesh mesh = unrepaired_mesh();
+  const TetMesh original = mesh;
+  const QualityReport before = compute_quality(mesh);
+  const SliverSmoothingResult r = smooth_slivers(mesh, 15.0);
+  EXPECT_GT(r.moved_vertices, 0u);
+  EXPECT_EQ(mesh.tets, original.tets);
+  std::set<int> on_surface;
+  for (const auto& [face, pair] : interface_faces(mesh)) on_surface.insert(face.begin(), face.end());
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    if (mesh.points[i] == original.points[i]) continue;
+    ++moved;
+    EXPECT_EQ(on_surface.count(static_cast<int>(i)), 0u) << "surface node " << i << " moved";
+  }
+  EXPECT_GT(moved, 0u);
+  const QualityReport after = compute_quality(mesh);
+  for (std::size_t t = 0; t < before.tissues.size(); ++t)
+    EXPECT_NEAR(after.tissues[t].volume_mm3, before.tissues[t].volume_mm3,
+                test::kRelativeRoundoff * before.tissues[t].volume_mm3);
+  EXPECT_GE(after.total.min_dihedral_deg, before.total.min_dihedral_deg);
+  EXPECT_LT(after.total.tets_below_10deg, before.total.tets_below_10deg);
+  EXPECT_EQ(check_conformity(mesh).inverted_tets, 0u);
+  TetMesh again = original;
+  smooth_slivers(again, 15.0);
+  EXPECT_EQ(again.points, mesh.points);  // deterministic
 }

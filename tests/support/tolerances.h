@@ -55,17 +55,12 @@ constexpr double kCrossMeshDisplacementRel = 0.05;
 /// radius ratio) is off by 1e-2 or more.
 constexpr double kGmshPrintedQualityAbs = 1e-6;
 
-/// Smallest dihedral angle of a CGAL mesh of a smooth test complex (nested spheres, no junction)
-/// after exudation and sliver flips (default VolumeMeshParams): issue #6's bound for the CGAL
-/// mesh; measured 13.1 degrees.
+/// Smallest dihedral angle of a CGAL mesh of a test complex after exudation, sliver flips and
+/// sliver smoothing (default VolumeMeshParams): issue #6's bound for the CGAL mesh itself;
+/// measured 13.1 degrees (nested spheres) and 12.6 degrees (three boxes, where a needle boundary
+/// facet beside the protected triple line kept a tet at 8.1 degrees until smoothing could slide
+/// vertices within the flat box faces).
 constexpr double kComplexMeshMinDihedralDeg = 10.0;
-
-/// The same where junction curves are protected (three boxes): a needle boundary facet beside a
-/// protecting ball keeps a tet at 8.1 degrees (measured) that exudation cannot move and the
-/// in-tissue flips do not reach, so issue #6's 10 degrees is not met there and this bound is
-/// below it; 5 degrees still catches near-flat tets such as the 1.1-1.8 degree ones beside the
-/// phantom's junctions at 21K.
-constexpr double kComplexMeshJunctionMinDihedralDeg = 5.0;
 
 /// A surface vertex that constrained relaxation keeps on an axis-aligned plane or line (a flat
 /// interface, a straight junction): its coordinate there is an average of equal values, clamped and

@@ -1,0 +1,234 @@
+#include "mesher/sliver_smoothing.h"
+
+#include "mesher/face_key.h"
+#include "mesher/mesh_quality.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace tissuemesh {
+
+namespace {
+
+double min_dihedral(const TetShape& s) { return *std::min_element(s.dihedral_deg.begin(), s.dihedral_deg.end()); }
+
+TetShape shape(const TetMesh& mesh, const std::array<int, 4>& k) {
+  return tet_shape(mesh.points[k[0]], mesh.points[k[1]], mesh.points[k[2]], mesh.points[k[3]]);
+}
+
+// How a vertex may move without changing any tissue's boundary.
+struct Mobility {
+  enum Kind : char { kFixed, kFree, kInPlane } kind = kFixed;
+  Eigen::Vector3d normal{0, 0, 0};  ///< kInPlane: unit normal of its plane
+};
+
+// Unit normals of surface faces at a vertex that are this close (radians) count as one plane: a
+// move by d within it leaves the surface within d * 1e-6 of where it was.
+constexpr double kPlanarRad = 1e-6;
+
+// Free: on no boundary face and no interface face (its star lies in one tissue and closes around
+// it). In plane: every boundary or interface face at it lies on one region pair and one plane
+// (e.g. the cut chest-wall plane), so it may slide in that plane. Fixed: everything else
+// (junction and corner vertices, curved patches).
+std::vector<Mobility> mobility(const TetMesh& mesh) {
+  struct Face {
+    int tets = 0, tissue = 0, other = 0;  // tissue of the first tet and of the second (0 = none)
+    std::array<int, 3> nodes{};
+  };
+  std::unordered_map<std::uint64_t, Face> faces;
+  faces.reserve(4 * mesh.tets.size());
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& k = mesh.tets[t];
+    for (int f = 0; f < 4; ++f) {
+      const std::array<int, 3> n{k[(f + 1) % 4], k[(f + 2) % 4], k[(f + 3) % 4]};
+      auto [it, inserted] = faces.try_emplace(face_key(n[0], n[1], n[2]));
+      Face& face = it->second;
+      if (inserted) {
+        face.tissue = mesh.tissue_ids[t];
+        face.nodes = n;
+      } else {
+        face.other = mesh.tissue_ids[t];
+      }
+      ++face.tets;
+    }
+  }
+  std::vector<Mobility> out(mesh.points.size());
+  for (auto& m : out) m.kind = Mobility::kFree;
+  std::vector<std::pair<int, int>> pair_at(mesh.points.size(), {-1, -1});
+  // Faces in hash order would make the result depend on the hash; visit them in tet order.
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& k = mesh.tets[t];
+    for (int f = 0; f < 4; ++f) {
+      const Face& face = faces.at(face_key(k[(f + 1) % 4], k[(f + 2) % 4], k[(f + 3) % 4]));
+      if (face.tets == 2 && face.tissue == face.other) continue;  // inside one tissue
+      const std::pair<int, int> pair = std::minmax(face.tissue, face.tets == 1 ? 0 : face.other);
+      const Eigen::Vector3d a = mesh.points[face.nodes[0]], b = mesh.points[face.nodes[1]], c = mesh.points[face.nodes[2]];
+      Eigen::Vector3d n = (b - a).cross(c - a);
+      if (n.norm() > 0) n.normalize();
+      for (int v : face.nodes) {
+        Mobility& m = out[static_cast<std::size_t>(v)];
+        auto& seen = pair_at[static_cast<std::size_t>(v)];
+        if (m.kind == Mobility::kFree) {
+          m.kind = n.norm() > 0 ? Mobility::kInPlane : Mobility::kFixed;
+          m.normal = n;
+          seen = pair;
+        } else if (m.kind == Mobility::kInPlane &&
+                   (seen != pair || std::abs(std::abs(m.normal.dot(n)) - 1.0) > 0.5 * kPlanarRad * kPlanarRad ||
+                    n.norm() == 0)) {
+          m.kind = Mobility::kFixed;
+        }
+      }
+    }
+  }
+  return out;
+}
+
+class Smoother {
+ public:
+  Smoother(TetMesh& mesh, double target_deg) : mesh_(mesh), target_deg_(target_deg), star_start_(mesh.points.size() + 1, 0) {
+    for (const auto& k : mesh.tets)
+      for (int v : k) ++star_start_[static_cast<std::size_t>(v) + 1];
+    for (std::size_t i = 1; i < star_start_.size(); ++i) star_start_[i] += star_start_[i - 1];
+    star_.resize(star_start_.back());
+    std::vector<std::size_t> fill(star_start_.begin(), star_start_.end() - 1);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+      for (int v : mesh.tets[t]) star_[fill[static_cast<std::size_t>(v)]++] = t;
+  }
+
+  /// v's star at v's current position: its smallest dihedral angle (-inf when a tet is not
+  /// positive), the tet that has it, and the sum over its tets of (target - smallest angle)^2 for
+  /// those below the target.
+  struct StarQuality {
+    double min_deg = std::numeric_limits<double>::infinity();
+    double shortfall = 0;
+    std::size_t worst = 0;
+    /// Better: a larger minimum, or the same minimum with less shortfall (a star whose worst tet
+    /// no move of v can improve, e.g. one with a flat face opposite v, still lets v fix the
+    /// others).
+    bool better_than(const StarQuality& o) const {
+      return min_deg > o.min_deg || (min_deg == o.min_deg && shortfall < o.shortfall);
+    }
+  };
+  StarQuality star_quality(int v) const {
+    StarQuality q;
+    for (std::size_t i = star_start_[v]; i < star_start_[v + 1]; ++i) {
+      const TetShape s = shape(mesh_, mesh_.tets[star_[i]]);
+      if (!(s.volume_mm3 > 0)) {
+        q.min_deg = -std::numeric_limits<double>::infinity();
+        return q;
+      }
+      const double m = min_dihedral(s);
+      if (m < target_deg_) q.shortfall += (target_deg_ - m) * (target_deg_ - m);
+      if (m < q.min_deg) {
+        q.min_deg = m;
+        q.worst = star_[i];
+      }
+    }
+    return q;
+  }
+
+  /// Pattern search on v's position, in its plane when it has one; true when v moved.
+  bool improve(int v, const Mobility& mobility) {
+    Eigen::Vector3d& p = mesh_.points[static_cast<std::size_t>(v)];
+    const Eigen::Vector3d start = p;
+    const StarQuality q0 = star_quality(v);
+    StarQuality best = q0;
+    double edge_sum = 0;
+    std::size_t edges = 0;
+    for (std::size_t i = star_start_[v]; i < star_start_[v + 1]; ++i)
+      for (int w : mesh_.tets[star_[i]])
+        if (w != v) {
+          edge_sum += (mesh_.points[static_cast<std::size_t>(w)] - start).norm();
+          ++edges;
+        }
+    double step = 0.25 * edge_sum / static_cast<double>(std::max<std::size_t>(edges, 1));
+    constexpr int kHalvings = 8, kMovesPerStep = 16;
+    for (int level = 0; level < kHalvings; ++level, step *= 0.5) {
+      for (int move = 0; move < kMovesPerStep; ++move) {
+        // Directions: the axes and the outward normal of the face opposite v in the worst tet,
+        // projected into v's plane when it has one.
+        std::array<Eigen::Vector3d, 8> directions{Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitX(),
+                                                  Eigen::Vector3d::UnitY(), -Eigen::Vector3d::UnitY(),
+                                                  Eigen::Vector3d::UnitZ(), -Eigen::Vector3d::UnitZ(),
+                                                  Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+        const auto& k = mesh_.tets[best.worst];
+        std::array<Eigen::Vector3d, 3> face;
+        int n = 0;
+        for (int w : k)
+          if (w != v) face[static_cast<std::size_t>(n++)] = mesh_.points[static_cast<std::size_t>(w)];
+        Eigen::Vector3d normal = (face[1] - face[0]).cross(face[2] - face[0]);
+        if (normal.norm() > 0) {
+          normal.normalize();
+          if (normal.dot(p - face[0]) < 0) normal = -normal;
+          directions[6] = normal;
+          directions[7] = -normal;
+        }
+        if (mobility.kind == Mobility::kInPlane)
+          for (Eigen::Vector3d& d : directions) {
+            d -= d.dot(mobility.normal) * mobility.normal;
+            if (d.norm() < 1e-3) d.setZero();  // (nearly) along the normal: no move in the plane
+            else d.normalize();
+          }
+        const Eigen::Vector3d here = p;
+        Eigen::Vector3d best_point = here;
+        for (const Eigen::Vector3d& d : directions) {
+          if (d.isZero()) continue;
+          p = here + step * d;
+          const StarQuality q = star_quality(v);
+          if (q.better_than(best)) {
+            best = q;
+            best_point = p;
+          }
+        }
+        p = best_point;
+        if (best_point == here) break;
+      }
+    }
+    if (best.better_than(q0)) return true;
+    p = start;
+    return false;
+  }
+
+ private:
+  TetMesh& mesh_;
+  double target_deg_;
+  std::vector<std::size_t> star_start_;
+  std::vector<std::size_t> star_;
+};
+
+}  // namespace
+
+SliverSmoothingResult smooth_slivers(TetMesh& mesh, double target_deg, int max_passes) {
+  SliverSmoothingResult r;
+  const std::vector<Mobility> mobile = mobility(mesh);
+  auto movable = [&](int v) { return mobile[static_cast<std::size_t>(v)].kind != Mobility::kFixed; };
+  Smoother smoother(mesh, target_deg);
+  for (int pass = 0; pass < max_passes; ++pass) {
+    std::vector<std::pair<double, std::size_t>> bad;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+      const double m = min_dihedral(shape(mesh, mesh.tets[t]));
+      if (m < target_deg) bad.emplace_back(m, t);
+    }
+    bool has_free = false;
+    for (const auto& [m, t] : bad)
+      for (int v : mesh.tets[t]) has_free = has_free || movable(v);
+    if (!has_free) break;
+    std::sort(bad.begin(), bad.end());
+    ++r.passes;
+    std::size_t moved = 0;
+    for (const auto& [m0, t] : bad) {
+      if (min_dihedral(shape(mesh, mesh.tets[t])) >= target_deg) continue;  // an earlier move fixed it
+      for (int v : mesh.tets[t])
+        if (movable(v) && smoother.improve(v, mobile[static_cast<std::size_t>(v)])) ++moved;
+    }
+    r.moved_vertices += moved;
+    if (moved == 0) break;
+  }
+  return r;
+}
+
+}  // namespace tissuemesh
