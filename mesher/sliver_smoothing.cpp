@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <unordered_map>
 #include <utility>
@@ -136,6 +137,9 @@ class Smoother {
     Eigen::Vector3d& p = mesh_.points[static_cast<std::size_t>(v)];
     const Eigen::Vector3d start = p;
     const StarQuality q0 = star_quality(v);
+    // A star that already holds a flat or inverted tet is left alone: no move is measured against
+    // it, and its worst tet is unknown.
+    if (!std::isfinite(q0.min_deg)) return false;
     StarQuality best = q0;
     double edge_sum = 0;
     std::size_t edges = 0;
@@ -159,7 +163,7 @@ class Smoother {
         std::array<Eigen::Vector3d, 3> face;
         int n = 0;
         for (int w : k)
-          if (w != v) face[static_cast<std::size_t>(n++)] = mesh_.points[static_cast<std::size_t>(w)];
+          if (w != v && n < 3) face[static_cast<std::size_t>(n++)] = mesh_.points[static_cast<std::size_t>(w)];
         Eigen::Vector3d normal = (face[1] - face[0]).cross(face[2] - face[0]);
         if (normal.norm() > 0) {
           normal.normalize();

@@ -228,3 +228,14 @@ TEST(SliverSmoothing, KeepsCurvedInterfacesAndVolumesOfACgalMeshAndRaisesQuality
   smooth_slivers(again, 15.0);
   EXPECT_EQ(again.points, mesh.points);  // deterministic
 }
+
+// A node whose star already holds an inverted tet is not a smoothing case (the mesher never
+// hands one over): it is left where it is, and nothing else breaks.
+TEST(SliverSmoothing, LeavesANodeWithAnInvertedTetAlone) {
+  TetMesh mesh = test::box_mesh({0, 0, 0}, {8, 8, 4}, 4, 4, 2);
+  const int inner = push_node(mesh, {4, 4, 2}, {0, 0, 2.2});
+  ASSERT_GT(check_conformity(mesh).inverted_tets, 0u);
+  const Eigen::Vector3d pushed = mesh.points[static_cast<std::size_t>(inner)];
+  smooth_slivers(mesh, 15.0);
+  EXPECT_EQ(mesh.points[static_cast<std::size_t>(inner)], pushed);
+}
