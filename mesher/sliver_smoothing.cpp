@@ -217,10 +217,10 @@ SliverSmoothingResult smooth_slivers(TetMesh& mesh, double target_deg, int max_p
       const double m = min_dihedral(shape(mesh, mesh.tets[t]));
       if (m < target_deg) bad.emplace_back(m, t);
     }
-    bool has_free = false;
+    bool any_movable = false;
     for (const auto& [m, t] : bad)
-      for (int v : mesh.tets[t]) has_free = has_free || movable(v);
-    if (!has_free) break;
+      for (int v : mesh.tets[t]) any_movable = any_movable || movable(v);
+    if (!any_movable) break;
     std::sort(bad.begin(), bad.end());
     ++r.passes;
     std::size_t moved = 0;
