@@ -39,6 +39,7 @@ TissueQuality empty_quality(std::string name, int id) {
   q.min_radius_ratio = std::numeric_limits<double>::infinity();
   q.mean_radius_ratio = 0;  // running sum until finish()
   q.min_sicn = std::numeric_limits<double>::infinity();
+  q.max_radius_edge_ratio = 0;
   return q;
 }
 
@@ -53,6 +54,8 @@ void accumulate(TissueQuality& q, const TetShape& s) {
   q.min_radius_ratio = std::min(q.min_radius_ratio, s.radius_ratio);
   q.mean_radius_ratio += s.radius_ratio;
   q.min_sicn = std::min(q.min_sicn, s.sicn);
+  q.max_radius_edge_ratio = std::max(q.max_radius_edge_ratio, s.radius_edge_ratio);
+  if (s.radius_edge_ratio > 2.0) ++q.tets_radius_edge_above_2;
   auto& histogram = q.dihedral_histogram;
   for (double angle : s.dihedral_deg) ++histogram.counts[histogram_bin(histogram, angle)];
 }
@@ -61,7 +64,7 @@ void finish(TissueQuality& q, const std::vector<bool>& used_nodes, double refere
   q.vertices = static_cast<std::size_t>(std::count(used_nodes.begin(), used_nodes.end(), true));
   if (q.tets == 0) {
     q.min_dihedral_deg = q.max_dihedral_deg = TissueQuality::kUnknown;
-    q.min_radius_ratio = q.mean_radius_ratio = q.min_sicn = TissueQuality::kUnknown;
+    q.min_radius_ratio = q.mean_radius_ratio = q.min_sicn = q.max_radius_edge_ratio = TissueQuality::kUnknown;
   } else {
     q.mean_radius_ratio /= static_cast<double>(q.tets);
   }
@@ -88,6 +91,8 @@ nlohmann::json tissue_json(const TissueQuality& q) {
           {"min_radius_ratio", number_or_null(q.min_radius_ratio)},
           {"mean_radius_ratio", number_or_null(q.mean_radius_ratio)},
           {"min_sicn", number_or_null(q.min_sicn)},
+          {"max_radius_edge_ratio", number_or_null(q.max_radius_edge_ratio)},
+          {"tets_radius_edge_above_2", q.tets_radius_edge_above_2},
           {"dihedral_histogram",
            {{"bin_width_deg", q.dihedral_histogram.bin_width_deg},
             {"counts", q.dihedral_histogram.counts},
@@ -113,7 +118,8 @@ std::string table_row(const TissueQuality& q, int name_width) {
       << cell(q.reference_volume_mm3, 15, 2) << cell(100.0 * q.volume_error_rel, 9, 2)
       << cell(q.min_dihedral_deg, 9, 2) << cell(q.max_dihedral_deg, 9, 2) << std::setw(9)
       << q.tets_below_10deg << std::setw(9) << q.tets_below_5deg << cell(q.min_radius_ratio, 9, 3)
-      << cell(q.mean_radius_ratio, 9, 3) << cell(q.min_sicn, 9, 3) << "\n";
+      << cell(q.mean_radius_ratio, 9, 3) << cell(q.min_sicn, 9, 3) << cell(q.max_radius_edge_ratio, 9, 3)
+      << std::setw(9) << q.tets_radius_edge_above_2 << "\n";
   return row.str();
 }
 
@@ -146,6 +152,13 @@ TetShape tet_shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
                             ad.squaredNorm() * n[3];
   const double denominator = area * m.norm();
   s.radius_ratio = denominator > 0 ? 3.0 * det * det / denominator : 0.0;
+  // R = |m| / (2 |det|) over the shortest of the six edges.
+  const double shortest = std::sqrt(std::min({ab.squaredNorm(), ac.squaredNorm(), ad.squaredNorm(),
+                                              (c - b).squaredNorm(), (d - b).squaredNorm(),
+                                              (d - c).squaredNorm()}));
+  const double circumradius_times_2det = m.norm();
+  s.radius_edge_ratio = det != 0.0 && shortest > 0.0 ? circumradius_times_2det / (2.0 * std::abs(det) * shortest)
+                                                     : std::numeric_limits<double>::infinity();
 
   // SICN = 3 / (|E W^-1|_F |W E^-1|_F) with E = [ab ac ad] and W the same for the unit regular
   // tet. E^-1 = adj(E) / det, whose rows are n[1..3], so SICN = 3 det / (|E W^-1|_F |W adj(E)|_F):
@@ -235,7 +248,8 @@ std::string format_quality_table(const QualityReport& report) {
          << "tets" << std::setw(10) << "vertices" << std::setw(15) << "volume[mm^3]"
          << std::setw(15) << "ref.vol[mm^3]" << std::setw(9) << "err[%]" << std::setw(9)
          << "min[deg]" << std::setw(9) << "max[deg]" << std::setw(9) << "<10deg" << std::setw(9)
-         << "<5deg" << std::setw(9) << "min RR" << std::setw(9) << "mean RR" << std::setw(9) << "min SICN" << "\n";
+         << "<5deg" << std::setw(9) << "min RR" << std::setw(9) << "mean RR" << std::setw(9) << "min SICN"
+         << std::setw(9) << "max R/l" << std::setw(9) << "R/l>2" << "\n";
   std::string out = header.str();
   for (const auto& q : report.tissues) out += table_row(q, name_width);
   out += table_row(report.total, name_width);

@@ -46,6 +46,11 @@ struct TetShape {
   /// is inverted. 1 for the regular tet, 0 for a degenerate one, sqrt(2/3) for the right-corner
   /// tet; in [-1, 1].
   double sicn;
+  /// Circumradius over shortest edge, TetGen's radius-edge ratio (its -q bound): sqrt(6)/4 =
+  /// 0.612 for the regular tet, sqrt(3)/2 for the right-corner tet; +infinity for a flat or
+  /// collapsed tet. Blind to slivers (four nearly coplanar nodes on a circle keep it near
+  /// 1/sqrt(2)), hence the dihedral angles next to it. Independent of orientation.
+  double radius_edge_ratio;
   /// Signed volume, mm^3: positive for a positively oriented tet (see TetMesh), negative inverted.
   double volume_mm3;
 };
@@ -85,6 +90,10 @@ struct TissueQuality {
   double min_radius_ratio = kUnknown;      ///< NaN without tets
   double mean_radius_ratio = kUnknown;     ///< NaN without tets
   double min_sicn = kUnknown;              ///< smallest TetShape::sicn; NaN without tets
+  /// Largest TetShape::radius_edge_ratio; NaN without tets, +infinity with a flat tet (JSON: null
+  /// for both; the table prints "-" and "inf").
+  double max_radius_edge_ratio = kUnknown;
+  std::size_t tets_radius_edge_above_2 = 0;  ///< tets with radius_edge_ratio > 2 (TetGen's -q2)
   DihedralHistogram dihedral_histogram;
 };
 

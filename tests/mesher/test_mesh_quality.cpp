@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 namespace tissuemesh {
 namespace {
@@ -79,6 +80,8 @@ TEST(TetShape, RegularTetHasAllDihedralsAcosOneThirdAndRadiusRatioOne) {
   }
   EXPECT_NEAR(s.radius_ratio, 1.0, kRelativeRoundoff);
   EXPECT_NEAR(s.sicn, 1.0, kRelativeRoundoff);  // the map from the unit regular tet is a similarity
+  // Circumradius a sqrt(6)/4 over edge a.
+  EXPECT_NEAR(s.radius_edge_ratio, std::sqrt(6.0) / 4.0, kRelativeRoundoff);
   // Edge length sqrt(8): volume a^3 / (6 sqrt(2)) = 8/3; the node order above is positive.
   EXPECT_NEAR(s.volume_mm3, 8.0 / 3.0, kRelativeRoundoff);
 }
@@ -100,6 +103,7 @@ TEST(TetShape, RightCornerTetHasRightAnglesAtTheCornerEdges) {
   // so |A|_F^2 = 1/2 + 2 + 2, |A^-1|_F^2 = 3 and SICN = 3 / sqrt(27/2) = sqrt(2/3). Gmsh 4.8
   // prints 0.816497.
   EXPECT_NEAR(s.sicn, std::sqrt(2.0 / 3.0), kRelativeRoundoff);
+  EXPECT_NEAR(s.radius_edge_ratio, std::sqrt(3.0) / 2.0, kRelativeRoundoff);  // shortest edge 1
   EXPECT_NEAR(s.volume_mm3, 1.0 / 6.0, kRelativeRoundoff);
 }
 
@@ -131,6 +135,9 @@ TEST(TetShape, SliverHasAnglesNearZeroAndNearStraightAndRadiusRatioNearZero) {
   EXPECT_GT(*std::max_element(s.dihedral_deg.begin(), s.dihedral_deg.end()), 179.5);
   EXPECT_NEAR(s.radius_ratio, ref.radius_ratio, kRelativeRoundoff * ref.radius_ratio);
   EXPECT_LT(s.radius_ratio, 0.01);
+  // The radius-edge ratio does not see the sliver: circumradius sqrt(1/2 + h^2/4) over the side
+  // sqrt(1 + h^2), about 1/sqrt(2), well inside TetGen's usual bound of 2.
+  EXPECT_NEAR(s.radius_edge_ratio, std::sqrt(0.5 + h * h / 4.0) / std::sqrt(1.0 + h * h), kRelativeRoundoff);
   EXPECT_NEAR(s.volume_mm3, 2.0 * h / 6.0, kRelativeRoundoff * h);
 }
 
@@ -151,10 +158,12 @@ TEST(TetShape, NearlyFlatSliverAnglesAreAccurate) {
 TEST(TetShape, FlatAndCollapsedTetsHaveRadiusRatioZero) {
   EXPECT_EQ(shape_of(sliver(0.0)).radius_ratio, 0.0);
   EXPECT_EQ(shape_of(sliver(0.0)).sicn, 0.0);
+  EXPECT_EQ(shape_of(sliver(0.0)).radius_edge_ratio, std::numeric_limits<double>::infinity());
   const TetShape collapsed = shape_of({Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(1, 0, 0),
                                        Vector3d(0, 1, 0)});
   EXPECT_EQ(collapsed.radius_ratio, 0.0);
   EXPECT_EQ(collapsed.sicn, 0.0);
+  EXPECT_EQ(collapsed.radius_edge_ratio, std::numeric_limits<double>::infinity());
   EXPECT_EQ(collapsed.volume_mm3, 0.0);
 }
 
@@ -171,6 +180,7 @@ TEST(TetShape, ShapeIsInvariantUnderRotationTranslationAndUniformScaling) {
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(a.dihedral_deg[i], b.dihedral_deg[i], kAngleDeg);
   EXPECT_NEAR(a.radius_ratio, b.radius_ratio, kRelativeRoundoff);
   EXPECT_NEAR(a.sicn, b.sicn, kRelativeRoundoff);
+  EXPECT_NEAR(a.radius_edge_ratio, b.radius_edge_ratio, kRelativeRoundoff);
   EXPECT_NEAR(b.volume_mm3, scale * scale * scale * a.volume_mm3,
               kRelativeRoundoff * std::abs(b.volume_mm3));
 }
@@ -184,6 +194,7 @@ TEST(TetShape, InvertedTetHasTheSameShapeAndNegativeVolume) {
   EXPECT_NEAR(b.volume_mm3, -a.volume_mm3, kRelativeRoundoff * a.volume_mm3);
   EXPECT_NEAR(b.radius_ratio, a.radius_ratio, kRelativeRoundoff);
   EXPECT_NEAR(b.sicn, -a.sicn, kRelativeRoundoff);  // SICN is the one signed shape measure
+  EXPECT_NEAR(b.radius_edge_ratio, a.radius_edge_ratio, kRelativeRoundoff);
   EXPECT_GT(a.sicn, 0.0);
   const std::array<int, 6> swapped_edge{0, 2, 1, 4, 3, 5};  // kTetEdges index after c <-> d
   for (int i = 0; i < 6; ++i) {
@@ -234,6 +245,10 @@ TEST(MeshQuality, StructuredGridHistogramHoldsSixAnglesPerTetAtTheirExactBins) {
   EXPECT_EQ(r.total.tets_below_5deg, 0u);
   EXPECT_NEAR(r.total.min_radius_ratio, kKuhnRadiusRatio, kRelativeRoundoff);
   EXPECT_NEAR(r.total.mean_radius_ratio, kKuhnRadiusRatio, kRelativeRoundoff);
+  // Every Kuhn tet has the cube's circumsphere (radius sqrt(3)/2 of the 2 mm edge) and the cube
+  // edge as its shortest edge.
+  EXPECT_NEAR(r.total.max_radius_edge_ratio, std::sqrt(3.0) / 2.0, kRelativeRoundoff);
+  EXPECT_EQ(r.total.tets_radius_edge_above_2, 0u);
   for (const TissueQuality& q : r.tissues) {
     std::size_t tissue_sum = 0;
     for (std::size_t c : q.dihedral_histogram.counts) tissue_sum += c;
@@ -275,6 +290,28 @@ TEST(MeshQuality, TetsWithSmallAnglesAreCountedBelowTheirThresholds) {
   EXPECT_NEAR(r.tissues[0].mean_radius_ratio, kKuhnRadiusRatio, kRelativeRoundoff);
   EXPECT_NEAR(r.tissues[1].min_radius_ratio, sliver_reference(1e-3).radius_ratio,
               kRelativeRoundoff);
+}
+
+TEST(MeshQuality, TetsWithAShortEdgeAreCountedAboveRadiusEdgeTwo) {
+  TetMesh mesh = kuhn_cube();
+  // Caps over the right-angled unit triangle, apex at height e over its corner: circumcentre
+  // (1/2, 1/2, e/2), so R / e = sqrt(1/2 + e^2/4) / e, the shortest edge being e (< 1).
+  const auto ratio = [](double e) { return std::sqrt(0.5 + e * e / 4.0) / e; };
+  for (double e : {0.5, 0.3, 0.1}) {
+    const int base = static_cast<int>(mesh.points.size());
+    for (const Vector3d& p : {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0), Vector3d(0, 0, e)})
+      mesh.points.push_back(p + Vector3d(5, 5, 5));
+    mesh.tets.push_back({base, base + 1, base + 2, base + 3});
+    mesh.tissue_ids.push_back(1);
+  }
+  ASSERT_LT(ratio(0.5), 2.0);  // 1.5
+  ASSERT_GT(ratio(0.3), 2.0);  // 2.4
+  const QualityReport r = compute_quality(mesh);
+  EXPECT_EQ(r.tissues[0].tets_radius_edge_above_2, 2u);
+  EXPECT_EQ(r.tissues[1].tets_radius_edge_above_2, 0u);
+  EXPECT_EQ(r.total.tets_radius_edge_above_2, 2u);
+  EXPECT_NEAR(r.tissues[0].max_radius_edge_ratio, ratio(0.1), kRelativeRoundoff * ratio(0.1));
+  EXPECT_NEAR(r.tissues[1].max_radius_edge_ratio, std::sqrt(3.0) / 2.0, kRelativeRoundoff);
 }
 
 TEST(MeshQuality, ReferenceVolumesGiveRelativeVolumeErrors) {
@@ -328,7 +365,8 @@ TEST(MeshQuality, JsonRoundTripKeepsEveryKeyAndValue) {
   const char* keys[] = {"name", "id", "tets", "vertices", "volume_mm3", "reference_volume_mm3",
                         "volume_error_rel", "min_dihedral_deg", "max_dihedral_deg",
                         "tets_below_10deg", "tets_below_5deg", "min_radius_ratio",
-                        "mean_radius_ratio", "min_sicn", "dihedral_histogram"};
+                        "mean_radius_ratio", "min_sicn", "max_radius_edge_ratio",
+                        "tets_radius_edge_above_2", "dihedral_histogram"};
   for (const nlohmann::json& t : {j["tissues"][0], j["tissues"][1], j["total"]}) {
     for (const char* key : keys) EXPECT_TRUE(t.contains(key)) << key;
     EXPECT_EQ(t["dihedral_histogram"]["counts"].size(), 36u);
