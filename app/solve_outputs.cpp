@@ -107,6 +107,7 @@ nlohmann::json solver_json(const SolveResult& r) {
           {"total_iterations", r.total_iterations},
           {"factorisations", r.factorisations},
           {"shifted_factorisations", r.shifted_factorisations},
+          {"failed_factorisations", r.failed_factorisations},
           {"preconditioned_cg_iterations", r.linear_iterations},
           {"assembly_seconds", r.assembly_seconds},
           {"linear_solve_seconds", r.linear_solve_seconds},

@@ -8,16 +8,20 @@
 // tangent changes little between Newton iterations and increments. So a factorisation is kept and
 // used as the preconditioner of conjugate gradients on the current K; CG typically reaches the
 // requested accuracy in a few iterations, each costing one multiplication by K and one pair of
-// triangular solves (~1/100 of a factorisation). Only when it needs more than 25 iterations, or
-// meets non-positive curvature, is K factorised anew and solved directly. The answer is the same up to the requested relative residual
-// ||K x - b|| <= rtol ||b|| (the Newton loop's inexactness).
+// triangular solves (~1/30 of a factorisation on the 60K-tet benchmark model). Only when it needs
+// more than 25 iterations, or meets non-positive curvature, is K factorised anew and solved
+// directly. The answer is the same up to the requested relative residual ||K x - b|| <= rtol ||b||
+// (the Newton loop's inexactness), except for a K that is not positive definite (below).
 //   Cholmod         CHOLMOD supernodal Cholesky (Eigen::CholmodSupernodalLLT; CHOLMOD's own
-//                   AMD/METIS choice; BLAS-3 on supernodes). A K CHOLMOD finds not positive
-//                   definite (soft tissue in compression) is factorised with the smallest
-//                   diagonal shift sigma * mean|K_ii|, sigma = 1e-8, 1e-6, ... 1e-2, that works;
-//                   that factor preconditions CG on the true K, and where CG meets negative
-//                   curvature its own solution is the step (a damped step that lowers the energy,
-//                   as in modified Newton methods).
+//                   AMD/METIS choice, supernodes amalgamated twice as coarsely as its default;
+//                   BLAS-3 on supernodes). A K that is not positive definite (soft tissue in
+//                   compression, far from equilibrium: CG met negative curvature, or CHOLMOD
+//                   found a non-positive pivot) is factorised with a diagonal shift
+//                   sigma * mean|K_ii|, sigma on the ladder 1e-8, 1e-6, ... 1e-2, and that
+//                   factor's solution is the step (a damped, energy-descending step as in
+//                   Levenberg-Marquardt). The ladder starts where it succeeded last (each failed
+//                   rung costs up to a factorisation); a shifted factor is not kept as the next
+//                   preconditioner.
 //   SimplicialLDLT  Eigen's sparse LDL^T (AMD ordering); copes with an indefinite K directly.
 // solve() returns false (never throws) when nothing gives a finite solution.
 #pragma once
@@ -46,6 +50,9 @@ class SparseSpdSolver {
   std::string name() const;
   int factorisations() const { return factorisations_; }
   int shifted_factorisations() const { return shifted_; }
+  /// Factorisation attempts CHOLMOD gave up on (K or a too small shift not positive definite);
+  /// not counted in factorisations(), but in factorisation_seconds().
+  int failed_factorisations() const { return failed_; }
   int iterations() const { return iterations_; }
   /// Wall time spent in numeric factorisations (including failed, unshifted attempts).
   double factorisation_seconds() const { return factorisation_seconds_; }
@@ -55,6 +62,7 @@ class SparseSpdSolver {
   std::unique_ptr<Impl> impl_;
   int factorisations_ = 0;
   int shifted_ = 0;
+  int failed_ = 0;
   int iterations_ = 0;
   double factorisation_seconds_ = 0.0;
 };

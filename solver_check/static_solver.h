@@ -27,10 +27,11 @@
 //   rest of the load): load_steps sets the first increment, not the number of increments.
 //   At most max_load_steps increments are attempted, cut-backs included.
 // - Newton-Raphson with the consistent tangent. Each direction solves K dq = R to a relative
-//   residual of 1e-4 (solver_check/linear_solver.h): conjugate gradients preconditioned by the
-//   last factorisation of the tangent, and a new factorisation (CHOLMOD's supernodal Cholesky
-//   when the build has it, else Eigen::SimplicialLDLT; symbolic analysis done once) only when CG
-//   does not get there in 25 iterations. Backtracking line search: step lengths 1, 1/2, ... 1/16,
+//   residual eta = ||R|| / scale clamped to [1e-4, 1e-2] (inexact Newton;
+//   solver_check/linear_solver.h): conjugate gradients preconditioned by the last factorisation
+//   of the tangent, and a new factorisation (CHOLMOD's supernodal Cholesky when the build has it,
+//   else Eigen::SimplicialLDLT; symbolic analysis done once) only when CG does not get there in
+//   25 iterations; a tangent that is not positive definite gives a damped (shifted) step. Backtracking line search: step lengths 1, 1/2, ... 1/16,
 //   the first that keeps every element un-inverted and lowers either the potential energy
 //   W(u) - load . u or ||R|| is taken; when none does, the un-inverted trial with the smallest
 //   ||R|| is taken.
@@ -128,6 +129,7 @@ struct SolveResult {
   int threads = 1;                ///< assembly threads used
   int factorisations = 0;         ///< numeric factorisations of the tangent
   int shifted_factorisations = 0; ///< of them, with a diagonal shift (tangent not positive definite)
+  int failed_factorisations = 0;  ///< attempts given up (not positive definite), not in the above
   int linear_iterations = 0;      ///< preconditioned CG iterations on kept factorisations
   double assembly_seconds = 0.0;  ///< wall time in element evaluation and assembly
   double linear_solve_seconds = 0.0;  ///< wall time in factorisation and solves

@@ -1,0 +1,111 @@
+// SparseSpdSolver (solver_check/linear_solver.h): direct and preconditioned solves to the
+// requested residual, and the shifted (damped) step for a tangent that is not positive definite:
+// which shift, how many attempts, and the attempts it saves (skipped unshifted try after CG's
+// proof of indefiniteness, ladder started at the last working shift).
+#include "solver_check/linear_solver.h"
+
+#include "support/tolerances.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace tissuemesh {
+namespace {
+
+using test::kRelativeRoundoff;
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+constexpr int kSize = 50;
+
+/// Lower triangle of a tridiagonal block (diagonal `diagonal`, off-diagonal -1) on the first
+/// kSize - 1 unknowns, and a last unknown coupled to nothing with diagonal `last`.
+SparseMatrix matrix(double diagonal, double last) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < kSize - 1; ++i) {
+    entries.emplace_back(i, i, diagonal);
+    if (i + 1 < kSize - 1) entries.emplace_back(i + 1, i, -1.0);
+  }
+  entries.emplace_back(kSize - 1, kSize - 1, last);
+  SparseMatrix K(kSize, kSize);
+  K.setFromTriplets(entries.begin(), entries.end());
+  return K;
+}
+
+double relative_residual(const SparseMatrix& K, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
+  return (K.selfadjointView<Eigen::Lower>() * x - b).norm() / b.norm();
+}
+
+Eigen::VectorXd ramp() { return Eigen::VectorXd::LinSpaced(kSize, 1.0, 2.0); }
+
+class CholmodSolver : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!cholmod_available()) GTEST_SKIP() << "this build has no CHOLMOD";
+  }
+};
+
+TEST_F(CholmodSolver, FactorisesOnceAndThenIteratesToTheRequestedResidual) {
+  SparseSpdSolver solver(LinearSolverKind::Cholmod);
+  const Eigen::VectorXd b = ramp();
+  Eigen::VectorXd x;
+  const SparseMatrix K1 = matrix(3.0, 1.0);
+  ASSERT_TRUE(solver.solve(K1, b, x, 1e-4));
+  EXPECT_LT(relative_residual(K1, x, b), kRelativeRoundoff);  // the direct solve
+  EXPECT_EQ(solver.factorisations(), 1);
+  EXPECT_EQ(solver.iterations(), 0);
+  // A nearby K: CG on the kept factorisation, to the requested residual and no further.
+  const SparseMatrix K2 = matrix(3.3, 1.1);
+  const double rtol = 1e-6;
+  ASSERT_TRUE(solver.solve(K2, b, x, rtol));
+  EXPECT_LE(relative_residual(K2, x, b), rtol);
+  EXPECT_EQ(solver.factorisations(), 1);
+  EXPECT_GT(solver.iterations(), 0);
+  EXPECT_EQ(solver.shifted_factorisations(), 0);
+  EXPECT_EQ(solver.failed_factorisations(), 0);
+}
+
+// The indefinite K below has the single negative eigenvalue -0.01 (the uncoupled last unknown):
+// the shift sigma * mean|K_ii| must exceed 0.01, which 1e-2 * 2.94 does and 1e-4 * 2.94 does not.
+TEST_F(CholmodSolver, IndefiniteTangentGivesTheDampedStepOfTheSmallestWorkingShift) {
+  SparseSpdSolver solver(LinearSolverKind::Cholmod);
+  const SparseMatrix K = matrix(3.0, -0.01);
+  const Eigen::VectorXd b = ramp();
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.solve(K, b, x, 1e-4));
+  // No factorisation to precondition with: unshifted, 1e-8, 1e-6 and 1e-4 fail, 1e-2 works.
+  EXPECT_EQ(solver.failed_factorisations(), 4);
+  EXPECT_EQ(solver.shifted_factorisations(), 1);
+  EXPECT_EQ(solver.factorisations(), 1);
+  const double shift = 1e-2 * K.diagonal().cwiseAbs().mean();
+  SparseMatrix shifted = K;
+  for (int i = 0; i < kSize; ++i) shifted.coeffRef(i, i) += shift;
+  EXPECT_LT(relative_residual(shifted, x, b), kRelativeRoundoff);
+  EXPECT_GT(b.dot(x), 0.0);  // a descent direction of the energy whose gradient is -b
+
+  // The same K again: the shifted factor is not reused as a preconditioner; the unshifted try
+  // fails and the ladder starts at the shift that worked, so nothing else is wasted.
+  ASSERT_TRUE(solver.solve(K, b, x, 1e-4));
+  EXPECT_EQ(solver.failed_factorisations(), 5);
+  EXPECT_EQ(solver.shifted_factorisations(), 2);
+  EXPECT_EQ(solver.iterations(), 0);
+}
+
+TEST_F(CholmodSolver, NegativeCurvatureInConjugateGradientsSkipsTheUnshiftedTry) {
+  SparseSpdSolver solver(LinearSolverKind::Cholmod);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(kSize), x;
+  b[kSize - 1] = 1.0;
+  ASSERT_TRUE(solver.solve(matrix(3.0, 1.0), b, x, 1e-4));
+  ASSERT_EQ(solver.failed_factorisations(), 0);
+  // The kept factor maps b to itself, and b^T K b = -0.01: CG's first direction proves K
+  // indefinite, so only the ladder's rungs 1e-8, 1e-6 and 1e-4 fail.
+  const SparseMatrix K = matrix(3.0, -0.01);
+  ASSERT_TRUE(solver.solve(K, b, x, 1e-4));
+  EXPECT_EQ(solver.failed_factorisations(), 3);
+  EXPECT_EQ(solver.shifted_factorisations(), 1);
+  const double expected = 1.0 / (-0.01 + 1e-2 * K.diagonal().cwiseAbs().mean());
+  EXPECT_NEAR(x[kSize - 1], expected, kRelativeRoundoff * expected);
+}
+
+}  // namespace
+}  // namespace tissuemesh
