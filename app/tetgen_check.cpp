@@ -105,14 +105,22 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
     tissues.push_back({{"tissue", a.name},
                        {"mesh", {{"tets", a.tets}, {"nodes", a.vertices}, {"volume_mm3", a.volume_mm3},
                                  {"min_dihedral_deg", a.min_dihedral_deg}, {"max_dihedral_deg", a.max_dihedral_deg},
-                                 {"tets_below_10deg", a.tets_below_10deg}, {"mean_radius_ratio", a.mean_radius_ratio}}},
+                                 {"tets_below_10deg", a.tets_below_10deg}, {"mean_radius_ratio", a.mean_radius_ratio},
+                                 {"max_radius_edge_ratio", a.max_radius_edge_ratio},
+                                 {"tets_radius_edge_above_2", a.tets_radius_edge_above_2}}},
                        {"tetgen", {{"tets", b.tets}, {"nodes", b.vertices}, {"volume_mm3", b.volume_mm3},
                                    {"min_dihedral_deg", b.min_dihedral_deg}, {"max_dihedral_deg", b.max_dihedral_deg},
-                                   {"tets_below_10deg", b.tets_below_10deg}, {"mean_radius_ratio", b.mean_radius_ratio}}},
+                                   {"tets_below_10deg", b.tets_below_10deg}, {"mean_radius_ratio", b.mean_radius_ratio},
+                                   {"max_radius_edge_ratio", b.max_radius_edge_ratio},
+                                   {"tets_radius_edge_above_2", b.tets_radius_edge_above_2}}},
                        {"volume_difference_percent", diff}});
   };
   for (std::size_t i = 0; i < q_mesh.tissues.size(); ++i) row(q_mesh.tissues[i], q_tg.tissues[i]);
   row(q_mesh.total, q_tg.total);
+  text << "  radius-edge ratio (circumradius / shortest edge, TetGen's -q measure): max "
+       << format_double("%.3f", q_mesh.total.max_radius_edge_ratio) << " MESH, "
+       << format_double("%.3f", q_tg.total.max_radius_edge_ratio) << " TetGen; tets above 2: "
+       << q_mesh.total.tets_radius_edge_above_2 << " MESH, " << q_tg.total.tets_radius_edge_above_2 << " TetGen\n";
 
   nlohmann::json interfaces = nlohmann::json::array();
   text << "\n  interface            area [mm^2]     TG [mm^2]   diff [%]\n";

@@ -255,7 +255,8 @@ std::string format_quality_table(const QualityReport& report) {
   out += table_row(report.total, name_width);
   out += "min/max: dihedral angles; <10deg, <5deg: tets with a dihedral below; RR: radius ratio "
          "3r/R (1 = regular, Gmsh's gamma); SICN: Gmsh's signed inverse condition number (1 = regular, < 0 "
-         "inverted); err: volume vs reference\n";
+         "inverted); R/l: circumradius / shortest edge (TetGen's radius-edge ratio; 0.612 = regular), R/l>2: "
+         "tets above 2; err: volume vs reference\n";
   return out;
 }
 

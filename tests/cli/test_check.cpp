@@ -6,6 +6,7 @@
 // with their exit codes and nothing written.
 #include "cli/cli_runner.h"
 #include "core/vtu_io.h"
+#include "mesher/mesh_quality.h"
 #include "solver_check/calculix_run.h"
 #include "support/model_fixture.h"
 #include "support/test_paths.h"
@@ -165,6 +166,15 @@ TEST_F(Check, TetgenMeshesTheSameGeometryAndMovesTheTumorAlike) {
     EXPECT_NEAR(record["tissues"][i]["tetgen"]["volume_mm3"].get<double>(), volumes[i],
                 test::kRelativeRoundoff * volumes[i]);
   }
+  // The radius-edge figures (issue #6 asks TetGen's mesh for <= 2) are those of the mesh written.
+  const QualityReport tg_quality = compute_quality(tg);
+  const auto& total = record["tissues"][3];
+  ASSERT_EQ(total["tissue"], "all tissues");
+  EXPECT_EQ(total["tetgen"]["max_radius_edge_ratio"].get<double>(), tg_quality.total.max_radius_edge_ratio);
+  EXPECT_EQ(total["tetgen"]["tets_radius_edge_above_2"].get<std::size_t>(),
+            tg_quality.total.tets_radius_edge_above_2);
+  std::cout << "[ check    ] block: TetGen max radius-edge ratio " << tg_quality.total.max_radius_edge_ratio << ", "
+            << tg_quality.total.tets_radius_edge_above_2 << " tets above 2\n";
   for (const auto& f : record["interfaces"])
     EXPECT_NEAR(f["tetgen_area_mm2"].get<double>(), f["mesh_area_mm2"].get<double>(),
                 test::kRelativeRoundoff * f["mesh_area_mm2"].get<double>())
