@@ -27,9 +27,11 @@ struct Pair {
     sum_ours += ours;
     sum_gmsh += gmsh;
   }
+  // Means over `tets` (> 0) tets.
+  double mean_ours(std::size_t tets) const { return sum_ours / static_cast<double>(tets); }
+  double mean_gmsh(std::size_t tets) const { return sum_gmsh / static_cast<double>(tets); }
   nlohmann::json json(std::size_t tets) const {
-    const double n = static_cast<double>(std::max<std::size_t>(tets, 1));
-    return {{"min_ours", min_ours}, {"min_gmsh", min_gmsh}, {"mean_ours", sum_ours / n}, {"mean_gmsh", sum_gmsh / n}};
+    return {{"min_ours", min_ours}, {"min_gmsh", min_gmsh}, {"mean_ours", mean_ours(tets)}, {"mean_gmsh", mean_gmsh(tets)}};
   }
 };
 
@@ -80,9 +82,8 @@ GmshCheck gmsh_check_into(const TetMesh& mesh, const nlohmann::json& inputs, con
   nlohmann::json tissues = nlohmann::json::array();
   for (const TissueRow& r : rows) {
     if (r.tets == 0) continue;
-    const double n = static_cast<double>(r.tets);
     std::snprintf(line, sizeof line, "  %-12s %9zu %10.6f %10.6f %10.6f %10.6f %10.6f %10.6f %10.2f\n", r.name.c_str(),
-                  r.tets, r.gamma.min_ours, r.gamma.min_gmsh, r.gamma.sum_ours / n, r.gamma.sum_gmsh / n,
+                  r.tets, r.gamma.min_ours, r.gamma.min_gmsh, r.gamma.mean_ours(r.tets), r.gamma.mean_gmsh(r.tets),
                   r.sicn.min_ours, r.sicn.min_gmsh, r.min_dihedral_deg);
     text << line;
     tissues.push_back({{"tissue", r.name},

@@ -52,6 +52,19 @@ SolvedMesh solve_mesh(const TetMesh& mesh, const std::string& target, const JobC
   return r;
 }
 
+// One mesh's figures for one tissue in check.json.
+nlohmann::json side_json(const TissueQuality& q) {
+  return {{"tets", q.tets},
+          {"nodes", q.vertices},
+          {"volume_mm3", q.volume_mm3},
+          {"min_dihedral_deg", q.min_dihedral_deg},
+          {"max_dihedral_deg", q.max_dihedral_deg},
+          {"tets_below_10deg", q.tets_below_10deg},
+          {"mean_radius_ratio", q.mean_radius_ratio},
+          {"max_radius_edge_ratio", q.max_radius_edge_ratio},
+          {"tets_radius_edge_above_2", q.tets_radius_edge_above_2}};
+}
+
 }  // namespace
 
 TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, const JobConfig& config,
@@ -103,16 +116,8 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
                   b.tets, a.volume_mm3, b.volume_mm3, diff, a.min_dihedral_deg, b.min_dihedral_deg);
     text << line;
     tissues.push_back({{"tissue", a.name},
-                       {"mesh", {{"tets", a.tets}, {"nodes", a.vertices}, {"volume_mm3", a.volume_mm3},
-                                 {"min_dihedral_deg", a.min_dihedral_deg}, {"max_dihedral_deg", a.max_dihedral_deg},
-                                 {"tets_below_10deg", a.tets_below_10deg}, {"mean_radius_ratio", a.mean_radius_ratio},
-                                 {"max_radius_edge_ratio", a.max_radius_edge_ratio},
-                                 {"tets_radius_edge_above_2", a.tets_radius_edge_above_2}}},
-                       {"tetgen", {{"tets", b.tets}, {"nodes", b.vertices}, {"volume_mm3", b.volume_mm3},
-                                   {"min_dihedral_deg", b.min_dihedral_deg}, {"max_dihedral_deg", b.max_dihedral_deg},
-                                   {"tets_below_10deg", b.tets_below_10deg}, {"mean_radius_ratio", b.mean_radius_ratio},
-                                   {"max_radius_edge_ratio", b.max_radius_edge_ratio},
-                                   {"tets_radius_edge_above_2", b.tets_radius_edge_above_2}}},
+                       {"mesh", side_json(a)},
+                       {"tetgen", side_json(b)},
                        {"volume_difference_percent", diff}});
   };
   for (std::size_t i = 0; i < q_mesh.tissues.size(); ++i) row(q_mesh.tissues[i], q_tg.tissues[i]);

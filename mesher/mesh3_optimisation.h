@@ -31,13 +31,14 @@ struct Mesh3Optimisation {
   /// Improve tets with a dihedral below this (degrees) by 2-3 flips and edge removals inside one
   /// tissue (sliver_flips.h): interfaces and volumes unchanged. 0 = off.
   double flip_slivers_below_deg = 15.0;
-  /// Then move vertices inside one tissue (on no interface or boundary face) of tets with a
-  /// dihedral below this (degrees) to raise the smallest angle around them (sliver_smoothing.h):
-  /// interfaces, boundary and volumes unchanged. 0 = off.
-  double smooth_slivers_below_deg = 15.0;
   /// Let those flips give a flat wedge on an interface to the neighbouring tissue (moves the
   /// interface by the wedge's thickness; the moved volume is reported).
   bool interface_flips = true;
+  /// Then move the vertices of tets with a dihedral below this (degrees) to raise the smallest
+  /// angle around them (sliver_smoothing.h): vertices inside one tissue freely, vertices on a
+  /// flat boundary or interface within its plane; interfaces, boundary and volumes unchanged.
+  /// 0 = off.
+  double smooth_slivers_below_deg = 15.0;
 
   /// Reads these keys from the open section map `m` (range-checked, the key named in errors);
   /// keys absent keep the defaults above.
@@ -50,7 +51,7 @@ struct Mesh3Optimisation {
 struct SliverRepair {
   BoundarySliverRemoval boundary_slivers;  ///< flat caps removed from the outer boundary
   SliverFlipResult sliver_flips;           ///< flips applied inside tissues
-  SliverSmoothingResult sliver_smoothing;  ///< free vertices moved
+  SliverSmoothingResult sliver_smoothing;  ///< vertices moved (free and in-plane)
 };
 
 /// The repairs `options` asks for (remove_boundary_slivers_deg, flip_slivers_below_deg,

@@ -156,8 +156,7 @@ TetShape tet_shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
   const double shortest = std::sqrt(std::min({ab.squaredNorm(), ac.squaredNorm(), ad.squaredNorm(),
                                               (c - b).squaredNorm(), (d - b).squaredNorm(),
                                               (d - c).squaredNorm()}));
-  const double circumradius_times_2det = m.norm();
-  s.radius_edge_ratio = det != 0.0 && shortest > 0.0 ? circumradius_times_2det / (2.0 * std::abs(det) * shortest)
+  s.radius_edge_ratio = det != 0.0 && shortest > 0.0 ? m.norm() / (2.0 * std::abs(det) * shortest)
                                                      : std::numeric_limits<double>::infinity();
 
   // SICN = 3 / (|E W^-1|_F |W E^-1|_F) with E = [ab ac ad] and W the same for the unit regular

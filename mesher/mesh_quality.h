@@ -3,7 +3,8 @@
 // Shape measures follow the usual definitions (Shewchuk, "What is a good linear finite element?",
 // 2002): the six interior dihedral angles, the normalised radius ratio 3 r / R (inradius over
 // circumradius, 1 for the regular tetrahedron, 0 for a degenerate one; Gmsh calls it gamma), and
-// Gmsh's signed inverse condition number SICN (see TetShape::sicn). Small dihedral angles
+// Gmsh's signed inverse condition number SICN (see TetShape::sicn), and TetGen's radius-edge ratio
+// (circumradius over shortest edge, see TetShape::radius_edge_ratio). Small dihedral angles
 // spoil the conditioning of the stiffness matrix, angles near 180 degrees spoil interpolation, so
 // both ends of the angle range are reported. Volume fidelity against a reference (e.g. the voxel
 // volume of each tissue) is reported next to the shape measures because a mesher that loses thin
