@@ -39,11 +39,10 @@ bool cholmod_available() {
 
 struct SparseSpdSolver::Impl {
   bool use_cholmod = false;
-  bool have_factor = false;  ///< a factorisation of some earlier K exists
-  bool exact_factor = false; ///< ... and it is of the unshifted K
-  /// The factor is of a shifted K: a poor preconditioner for the next K (measured: CG then
-  /// needs more than kMaxIterations every time), so the next solve factorises straight away.
-  bool stale = false;
+  /// The kept factorisation is of an earlier, unshifted K: the next solve's preconditioner. A
+  /// factor of a shifted K is a poor one for the next K (measured: CG then needs more than
+  /// kMaxIterations every time), so after it the next solve factorises straight away.
+  bool exact_factor = false;
   /// First rung of the shift ladder: the shift that worked last time, one rung lower after two
   /// unshifted factorisations in a row. A failed rung costs up to a full factorisation (CHOLMOD
   /// stops at the first non-positive pivot, often late), and the tangent's indefiniteness
@@ -69,7 +68,7 @@ struct SparseSpdSolver::Impl {
   /// (known_indefinite: CG has just proved it, so the unshifted attempt is skipped), K + sigma *
   /// mean|K_ii| I for the shift ladder sigma = 1e-8, 1e-6, ... 1e-2, started at sigma_start.
   bool factorise(const SparseMatrix& K, bool known_indefinite, int& shifted, int& failed) {
-    have_factor = exact_factor = stale = false;
+    exact_factor = false;
 #ifdef TISSUEMESH_HAVE_CHOLMOD
     if (use_cholmod) {
       if (!analysed) {
@@ -91,7 +90,7 @@ struct SparseSpdSolver::Impl {
         if (cholmod.info() == Eigen::Success) {
           if (!last_shifted) sigma_start = std::max(kMinShift, sigma_start / kShiftFactor);
           last_shifted = false;
-          return have_factor = exact_factor = true;
+          return exact_factor = true;
         }
         ++failed;
       }
@@ -102,8 +101,8 @@ struct SparseSpdSolver::Impl {
         if (cholmod.info() == Eigen::Success) {
           ++shifted;
           sigma_start = sigma;
-          stale = last_shifted = true;
-          return have_factor = true;
+          last_shifted = true;
+          return true;
         }
         ++failed;
       }
@@ -118,7 +117,7 @@ struct SparseSpdSolver::Impl {
       analysed = true;
     }
     ldlt.factorize(K);
-    return have_factor = exact_factor = ldlt.info() == Eigen::Success;
+    return exact_factor = ldlt.info() == Eigen::Success;
   }
 
   enum class CgOutcome { Converged, NegativeCurvature, NotConverged };
@@ -170,10 +169,10 @@ bool SparseSpdSolver::solve(const SparseMatrix& K, const Eigen::VectorXd& b, Eig
     x.resize(0);
     return true;
   }
-  // 1. The kept factorisation as preconditioner (unless stale). Negative curvature proves K
+  // 1. The kept factorisation of an unshifted K as preconditioner. Negative curvature proves K
   // indefinite: the factorisation below then goes straight to the shift ladder.
   bool known_indefinite = false;
-  if (impl_->have_factor && !impl_->stale) {
+  if (impl_->exact_factor) {
     const Impl::CgOutcome outcome = impl_->pcg(K, b, x, rtol, kMaxIterations, iterations_);
     if (outcome == Impl::CgOutcome::Converged) return true;
     known_indefinite = outcome == Impl::CgOutcome::NegativeCurvature;
