@@ -164,6 +164,11 @@ Model calculix_comparable_model(const Model& model, std::vector<std::string>& no
                     "neo-hookean (Abaqus NEO HOOKE, C10 = mu/2 = " + format_double("%g", m.C10_Pa) + " Pa, same mu " +
                     format_double("%g", m.mu_Pa) + " Pa and K " + format_double("%g", m.K_Pa) + " Pa) for this check");
   }
+  if (comparable.order == ElementOrder::Linear && comparable.analysis.tet4_pressure == Tet4Pressure::Nodal) {
+    comparable.analysis.tet4_pressure = Tet4Pressure::Element;
+    notes.push_back("tet4_pressure: nodal is the built-in solver's own element; CalculiX's C3D4 integrates the "
+                    "volume term per element, so both solvers use the standard tet4 for this check");
+  }
   return comparable;
 }
 
@@ -239,6 +244,7 @@ CalculixCheck calculix_check_into(const Model& model, const JobConfig& job, cons
                        {"iterations", builtin.total_iterations},
                        {"increments", builtin.steps.size()},
                        {"linear_solver", builtin.linear_solver},
+                       {"formulation", builtin.formulation},
                        {"threads", builtin.threads},
                        {"reused_solve", reuse}};
   record["comparison"] = {{"reference", "calculix"},

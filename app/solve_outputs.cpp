@@ -53,8 +53,7 @@ void require_finite(const nlohmann::json& j, const std::string& where) {
 }
 
 SolveResult run_solver(const Model& model, int threads, Progress& progress) {
-  auto stage = progress.stage(std::string("solve (built-in, ") +
-                              (model.order == ElementOrder::Linear ? "tet4" : "tet10") + ", " +
+  auto stage = progress.stage(std::string("solve (built-in, ") + formulation_name(model) + ", " +
                               std::to_string(3 * model.nodes.size()) + " dofs)");
   SolveOptions options;
   options.threads = threads;
@@ -97,6 +96,7 @@ nlohmann::json solver_json(const SolveResult& r) {
   }
   return {{"name", "built-in (total Lagrangian, Newton, load stepping)"},
           {"linear_solver", r.linear_solver},
+          {"formulation", r.formulation},
           {"threads", r.threads},
           {"free_dofs", r.free_dofs},
           {"converged", r.converged},
@@ -168,7 +168,8 @@ std::string summary_text(const nlohmann::json& record) {
        std::to_string(s["increments_attempted"].get<int>()) + " increments (" +
        std::to_string(s["increments_cut_back"].get<int>()) + " cut back), " +
        std::to_string(s["total_iterations"].get<int>()) + " Newton iterations, " +
-       format_double("%.2f", s["seconds"].get<double>()) + " s, " + s["linear_solver"].get<std::string>() + ", " +
+       format_double("%.2f", s["seconds"].get<double>()) + " s, " + s["formulation"].get<std::string>() + ", " +
+       s["linear_solver"].get<std::string>() + ", " +
        std::to_string(s["free_dofs"].get<int>()) + " free dofs\n";
   t += "  max displacement " + format_double("%.4f", res["max_displacement_mm"].get<double>()) + " mm at node " +
        std::to_string(res["max_displacement_node"].get<int>()) + " (1-based, the ids of model.inp/model.feb)\n";

@@ -56,6 +56,11 @@ struct Gravity {
   std::string name;  ///< "prone", "supine", "vector" or "none"
 };
 
+/// How tet4 integrates the volumetric part U(J) of the laws in the built-in solver: per element
+/// (the standard tet4 every export writes; locks as nu -> 0.5) or per node (average nodal
+/// pressure, solver_check/nodal_pressure.h).
+enum class Tet4Pressure { Element, Nodal };
+
 /// Nonlinear static analysis settings shared by the writers and the built-in solver.
 struct AnalysisSettings {
   int load_steps = 10;                 ///< initial number of equal load increments
@@ -65,6 +70,8 @@ struct AnalysisSettings {
   double displacement_tolerance = 1e-3;  ///< relative norm of the displacement correction
   double energy_tolerance = 1e-2;        ///< relative energy norm (FEBio etol)
   double residual_tolerance = 1e-6;      ///< relative residual norm (0 = off in FEBio)
+  /// Built-in solver only (writers ignore it; tet10 elements too).
+  Tet4Pressure tet4_pressure = Tet4Pressure::Element;
 };
 
 struct Model {

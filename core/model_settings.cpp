@@ -261,6 +261,13 @@ ModelSettings ModelSettings::from_yaml(YamlMap& map) {
   an.displacement_tolerance = a.in_range("displacement_tolerance", an.displacement_tolerance, 1e-16, 1.0);
   an.energy_tolerance = a.in_range("energy_tolerance", an.energy_tolerance, 0.0, 1.0);
   an.residual_tolerance = a.in_range("residual_tolerance", an.residual_tolerance, 0.0, 1.0);
+  if (a.has("tet4_pressure")) {
+    const std::string v = a.text("tet4_pressure", "");
+    if (v != "element" && v != "nodal")
+      throw InputError(a.where("tet4_pressure") + ": unknown value '" + v +
+                       "' (element: standard tet4, as exported | nodal: average nodal pressure, built-in solver only)");
+    an.tet4_pressure = v == "nodal" ? Tet4Pressure::Nodal : Tet4Pressure::Element;
+  }
   if (an.load_steps < 1 || an.load_steps > 10000)
     throw InputError(a.where("load_steps") + ": must be in [1, 10000]");
   if (an.max_load_steps < an.load_steps)
@@ -309,6 +316,7 @@ void ModelSettings::to_yaml(YAML::Emitter& out) const {
   out << YAML::Key << "displacement_tolerance" << YAML::Value << a.displacement_tolerance;
   out << YAML::Key << "energy_tolerance" << YAML::Value << a.energy_tolerance;
   out << YAML::Key << "residual_tolerance" << YAML::Value << a.residual_tolerance;
+  out << YAML::Key << "tet4_pressure" << YAML::Value << (a.tet4_pressure == Tet4Pressure::Nodal ? "nodal" : "element");
   out << YAML::EndMap;
   out << YAML::EndMap;
 }

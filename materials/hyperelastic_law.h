@@ -26,14 +26,26 @@ class HyperelasticLaw {
   virtual double energy(const Eigen::Matrix3d& C) const = 0;
   virtual Eigen::Matrix3d pk2(const Eigen::Matrix3d& C) const = 0;
   virtual Tangent6 tangent(const Eigen::Matrix3d& C) const = 0;
+
+  /// The part of W that depends on J = sqrt(det C) alone, U(J), and its derivatives dU/dJ (the
+  /// pressure it contributes, Cauchy sigma_vol = U'(J) I) and d2U/dJ2. Every law here is
+  /// W = W_rest(C) + U(J) with the bulk stiffness in U and only shear-modulus-sized stiffness left
+  /// in W_rest; the solver's nodal-pressure tet4 (solver_check/nodal_pressure.h) integrates U
+  /// per node instead of per element.
+  struct Volumetric {
+    double U = 0.0, dU = 0.0, d2U = 0.0;
+  };
+  virtual Volumetric volumetric(double J) const = 0;
 };
 
-/// W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2 (FEBio `neo-Hookean`, SOFA `NeoHookean`).
+/// W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2 (FEBio `neo-Hookean`, SOFA `NeoHookean`);
+/// volumetric part U = lambda/2 (ln J)^2.
 std::unique_ptr<HyperelasticLaw> make_compressible_neo_hookean(double mu, double lambda);
 
 /// Uncoupled Mooney-Rivlin W = C10 (I1bar - 3) + C01 (I2bar - 3) + K/2 (J - 1)^2
 /// (Abaqus/CalculiX `MOONEY-RIVLIN` with D1 = 2/K; `NEO HOOKE` when C01 = 0; FEBio `Mooney-Rivlin`
-/// with pressure_model Abaqus). I1bar = J^(-2/3) I1, I2bar = J^(-4/3) I2.
+/// with pressure_model Abaqus). I1bar = J^(-2/3) I1, I2bar = J^(-4/3) I2. Volumetric part
+/// U = K/2 (J - 1)^2 (likewise for Ogden).
 std::unique_ptr<HyperelasticLaw> make_uncoupled_mooney_rivlin(double C10, double C01, double K);
 
 /// Uncoupled Ogden W = sum_i 2 mu_i / alpha_i^2 (λ̄1^alpha_i + λ̄2^alpha_i + λ̄3^alpha_i - 3)

@@ -49,6 +49,9 @@ class UncoupledMooneyRivlin : public HyperelasticLaw {
     const Tangent6 t3 = k_ * ((2.0 * v.J - 1.0) * v.J * CiCi - 2.0 * (v.J * v.J - v.J) * Ci_sym);
     return t1 + t2 + t3;
   }
+  Volumetric volumetric(double J) const override {
+    return {0.5 * k_ * (J - 1.0) * (J - 1.0), k_ * (J - 1.0), k_};
+  }
 
  private:
   struct Invariants {

@@ -32,6 +32,10 @@ class CompressibleNeoHookean : public HyperelasticLaw {
     const double lnJ = 0.5 * std::log(C.determinant());
     return lambda_ * tensor4::outer(Ci, Ci) + 2.0 * (mu_ - lambda_ * lnJ) * tensor4::sym_product(Ci);
   }
+  Volumetric volumetric(double J) const override {
+    const double lnJ = std::log(J);
+    return {0.5 * lambda_ * lnJ * lnJ, lambda_ * lnJ / J, lambda_ * (1.0 - lnJ) / (J * J)};
+  }
 
  private:
   double mu_, lambda_;

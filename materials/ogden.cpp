@@ -119,6 +119,9 @@ class UncoupledOgden : public HyperelasticLaw {
     T += k_ * ((2.0 * J - 1.0) * J * tensor4::outer(Ci, Ci) - 2.0 * (J * J - J) * tensor4::sym_product(Ci));
     return T;
   }
+  Volumetric volumetric(double J) const override {
+    return {0.5 * k_ * (J - 1.0) * (J - 1.0), k_ * (J - 1.0), k_};
+  }
 
  private:
   // Principal values c (ascending) and orthonormal directions N (columns) of C.

@@ -2,6 +2,8 @@
 
 #include "core/errors.h"
 #include "materials/make_law.h"
+#include "materials/volumetric_split.h"
+#include "solver_check/nodal_pressure.h"
 #include "solver_check/tet_shape.h"
 
 #include <Eigen/LU>
@@ -25,6 +27,27 @@ std::string element_name(const Model& model, std::size_t e) {
   return "element " + std::to_string(e) + " (tissue '" + model.tissue_names.at(model.tissue_ids[e] - 1) + "')";
 }
 
+/// pbar_e (Pa) of every element of a nodal-pressure tet4 model at u (mm, 3 per node).
+std::vector<double> nodal_pressures(const Model& model, const std::vector<const HyperelasticLaw*>& law,
+                                    const Eigen::VectorXd& u_mm) {
+  std::vector<ElementGeometry> geometry(model.elements.size());
+  std::vector<int> tissue(model.elements.size());
+  for (std::size_t e = 0; e < model.elements.size(); ++e) {
+    ElementNodes X(4, 3);
+    for (int a = 0; a < 4; ++a) X.row(a) = model.nodes[model.elements[e][a]].transpose();
+    if (element_geometry(ElementOrder::Linear, X, geometry[e]) != ElementStatus::Ok)
+      throw SolverError("cell fields: " + element_name(model, e) + " is inverted in the reference mesh");
+    tissue[e] = model.tissue_ids[e] - 1;
+  }
+  const NodalPressure nodal(model.elements, geometry, tissue, law);
+  const NodalPressure::State state = nodal.evaluate(u_mm, 1);
+  if (!state.ok)
+    throw SolverError("cell fields: " + (state.failed_element >= 0 ? element_name(model, state.failed_element)
+                                                                    : std::string("a node patch")) +
+                      " has J = " + std::to_string(state.failed_J) + " (inverted or non-finite state)");
+  return state.pressure;
+}
+
 }  // namespace
 
 double von_mises(const StressVoigt& s) {
@@ -43,6 +66,19 @@ CellFields cell_fields(const Model& model, const std::vector<Eigen::Vector3d>& d
   const double length_per_mm = length_from_mm(model.units, 1.0);
 
   const ElementOrder order = model.order;
+  // Nodal-pressure tet4: the element stress of W_rest plus pbar_e I (solver_check/nodal_pressure.h).
+  const bool nodal = order == ElementOrder::Linear && model.analysis.tet4_pressure == Tet4Pressure::Nodal;
+  std::vector<std::unique_ptr<HyperelasticLaw>> shear;
+  std::vector<double> pressure(model.elements.size(), 0.0);
+  if (nodal) {
+    std::vector<const HyperelasticLaw*> law;
+    for (std::size_t e = 0; e < model.elements.size(); ++e)
+      law.push_back(laws.at(static_cast<std::size_t>(model.tissue_ids[e] - 1)).get());
+    Eigen::VectorXd u_mm(3 * model.nodes.size());
+    for (std::size_t v = 0; v < model.nodes.size(); ++v) u_mm.segment<3>(3 * v) = displacements[v] / length_per_mm;
+    pressure = nodal_pressures(model, law, u_mm);
+    for (const auto& l : laws) shear.push_back(make_shear_part(*l));
+  }
   const int n = tet_node_count(order);
   const QuadratureRule& rule = tet_stiffness_rule(order);
   std::vector<ShapeGradients> dNdxi;
@@ -59,7 +95,8 @@ CellFields cell_fields(const Model& model, const std::vector<Eigen::Vector3d>& d
       X.row(a) = model.nodes[node].transpose();
       u.row(a) = (displacements[node] / length_per_mm).transpose();
     }
-    const HyperelasticLaw& law = *laws.at(static_cast<std::size_t>(model.tissue_ids[e] - 1));
+    const std::size_t t = static_cast<std::size_t>(model.tissue_ids[e] - 1);
+    const HyperelasticLaw& law = nodal ? *shear.at(t) : *laws.at(t);
     Eigen::Matrix3d sigma_sum = Eigen::Matrix3d::Zero();
     double J_sum = 0.0, volume = 0.0;
     for (std::size_t q = 0; q < rule.size(); ++q) {
@@ -72,7 +109,8 @@ CellFields cell_fields(const Model& model, const std::vector<Eigen::Vector3d>& d
       if (!F.allFinite() || !(J > 0.0))
         throw SolverError("cell fields: " + element_name(model, e) + " has J = " + std::to_string(J) +
                           " at quadrature point " + std::to_string(q) + " (inverted or non-finite state)");
-      const Eigen::Matrix3d sigma = F * law.pk2(F.transpose() * F) * F.transpose() / J;
+      const Eigen::Matrix3d sigma =
+          F * law.pk2(F.transpose() * F) * F.transpose() / J + pressure[e] * Eigen::Matrix3d::Identity();
       if (!sigma.allFinite())
         throw SolverError("cell fields: " + element_name(model, e) + " has a non-finite stress");
       const double dV = rule[q].weight * det_ref;

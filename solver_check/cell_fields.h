@@ -13,6 +13,11 @@
 //   sigma_e = sum_q w_q det(dX/dxi)_q sigma_q / sum_q w_q det(dX/dxi)_q   (likewise J_e),
 // the same weights the solver integrates with. For tet4 (F constant) it is the value itself; for a
 // straight tet10 under a homogeneous deformation every point has the same value.
+// A nodal-pressure tet4 model (model.analysis.tet4_pressure: nodal) has instead
+//   sigma_e = J^-1 F S_rest F^T + pbar_e I,
+// S_rest the stress of the law without its volumetric part, pbar_e the element's mean nodal
+// pressure (solver_check/nodal_pressure.h), as the solver integrates it; under a homogeneous
+// deformation it is the same stress.
 // The von Mises stress is that of the mean Cauchy stress:
 //   sqrt(1/2 ((s11-s22)^2 + (s22-s33)^2 + (s33-s11)^2) + 3 (s12^2 + s23^2 + s13^2)).
 //

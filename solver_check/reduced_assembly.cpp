@@ -49,13 +49,15 @@ int default_threads() {
 
 ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::array<int, 10>>& elements,
                                  const std::vector<ElementGeometry>& geometry,
-                                 const std::vector<const HyperelasticLaw*>& law, const DofMap& dofs, int threads)
+                                 const std::vector<const HyperelasticLaw*>& law, const DofMap& dofs, int threads,
+                                 const NodalPressure* nodal)
     : n_(order == ElementOrder::Linear ? 4 : 10),
       elements_(elements),
       geometry_(geometry),
       law_(law),
       dofs_(dofs),
-      threads_(threads > 0 ? threads : default_threads()) {
+      threads_(threads > 0 ? threads : default_threads()),
+      nodal_(nodal) {
   const int num_nodes = dofs.num_nodes();
   const int ne = static_cast<int>(elements.size());
 
@@ -65,6 +67,10 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
     for (int a = 0; a < n_; ++a) {
       for (int b = 0; b < n_; ++b) adjacent[elements[e][a]].push_back(elements[e][b]);
     }
+  if (nodal_)
+    for (int p = 0; p < nodal_->num_patches(); ++p)
+      for (const int* v = nodal_->patch_nodes_begin(p); v != nodal_->patch_nodes_end(p); ++v)
+        adjacent[*v].insert(adjacent[*v].end(), nodal_->patch_nodes_begin(p), nodal_->patch_nodes_end(p));
   for (auto& list : adjacent) {
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
@@ -104,6 +110,50 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
     slot_start_[e + 1] = static_cast<int>(slots_.size());
   }
 
+  if (nodal_)
+    for (int p = 0; p < nodal_->num_patches(); ++p) {
+      const int* nodes = nodal_->patch_nodes_begin(p);
+      const int m = static_cast<int>(nodal_->patch_nodes_end(p) - nodes);
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j <= i; ++j) {
+          const int w = nodes[i], v = nodes[j];
+          for (int k = 0; k < dofs.count(v); ++k) {
+            if (dofs.count(w) == 0) break;
+            const int c = dofs.first(v) + k;
+            const int r = dofs.first(w) + (w == v ? k : 0);
+            const int* begin = inner.data() + outer[c];
+            const int* end = inner.data() + outer[c + 1];
+            patch_slots_.push_back(static_cast<int>(std::lower_bound(begin, end, r) - inner.data()));
+          }
+        }
+    }
+}
+
+void ReducedAssembly::add_patch_terms(const NodalPressure::State& state) {
+  double* values = K_.valuePtr();
+  std::vector<Eigen::Vector3d> d;
+  std::vector<Eigen::Vector3d> reduced;
+  std::size_t t = 0;
+  for (int p = 0; p < nodal_->num_patches(); ++p) {
+    nodal_->patch_gradient(state, p, d);
+    const int* nodes = nodal_->patch_nodes_begin(p);
+    const int m = static_cast<int>(d.size());
+    reduced.resize(m);
+    for (int i = 0; i < m; ++i)
+      reduced[i] = dofs_.unconstrained(nodes[i]) ? d[i] : Eigen::Vector3d(dofs_.basis(nodes[i]).transpose() * d[i]);
+    const double k = state.stiffness[p];
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j <= i; ++j) {
+        const int w = nodes[i], v = nodes[j];
+        for (int kk = 0; kk < dofs_.count(v); ++kk) {
+          if (dofs_.count(w) == 0) break;
+          const int first_row = (w == v ? kk : 0);
+          double* column = values + patch_slots_[t++] - first_row;
+          const double scale = k * reduced[j][kk];
+          for (int l = first_row; l < dofs_.count(w); ++l) column[l] += scale * reduced[i][l];
+        }
+      }
+  }
 }
 
 ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool with_tangent) {
@@ -114,6 +164,20 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
   const ElementOutput what = with_tangent ? ElementOutput::EnergyForceAndTangent : ElementOutput::EnergyAndForce;
   const int ne = static_cast<int>(elements_.size());
   const int nf = 3 * n_;
+  NodalPressure::State state;
+  if (nodal_) {
+    state = nodal_->evaluate(u, threads_);
+    if (!state.ok) {
+      out.ok = false;
+      std::ostringstream note;
+      if (state.failed_element >= 0)
+        note << "inverted element " << state.failed_element << " (min J " << state.failed_J << ")";
+      else
+        note << "non-finite volumetric energy of a node patch";
+      out.note = note.str();
+      return out;
+    }
+  }
 
   for (int start = 0; start < ne; start += kChunk) {
     const int end = std::min(ne, start + kChunk);
@@ -131,6 +195,7 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
         const std::array<int, 10>& element = elements_[e];
         for (int a = 0; a < n_; ++a) ue.row(a) = u.segment<3>(3 * element[a]).transpose();
         ElementResponse r = element_response(geometry_[e], ue, *law_[e], what);
+        if (r.ok() && nodal_) nodal_->add_element_terms(state, e, r.force, with_tangent ? &r.tangent : nullptr);
         if (!r.ok()) {
 #pragma omp critical(tissuemesh_assembly_failure)
           if (e < failed_element) {
@@ -180,6 +245,10 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
       const double* m = buffer_.data() + (slot_start_[e] - base);
       for (int p = slot_start_[e]; p < slot_start_[e + 1]; ++p) values[slots_[p]] += m[p - slot_start_[e]];
     }
+  }
+  if (nodal_) {
+    out.energy += state.energy;
+    if (with_tangent) add_patch_terms(state);
   }
   return out;
 }

@@ -13,11 +13,16 @@
 // results), the buffer stays small, and there is one synchronisation per chunk (element
 // colouring needs one per colour, ~30, which costs a scheduler time slice each on a loaded
 // 2-core machine: measured 30x slower than serial while another build ran).
+// With a NodalPressure (solver_check/nodal_pressure.h) the elements carry the laws' shear parts,
+// each element response gets its nodal-pressure terms, and the patch terms U''/V_p d_p d_p^T are
+// scattered serially in patch order after the elements; the pattern then also holds every pair
+// of nodes of a patch.
 #pragma once
 
 #include "materials/hyperelastic_law.h"
 #include "solver_check/dof_map.h"
 #include "solver_check/element_kernel.h"
+#include "solver_check/nodal_pressure.h"
 
 #include <Eigen/SparseCore>
 
@@ -31,9 +36,11 @@ class ReducedAssembly {
  public:
   /// `geometry` and `law` per element (same length as `elements`); everything is referenced, not
   /// copied, and must outlive this object. threads <= 0: $OMP_NUM_THREADS, else all processors.
+  /// `nodal` (tet4 only, may be null): the volumetric energy integrated per node; `law` must then
+  /// be the laws' shear parts (materials/volumetric_split.h).
   ReducedAssembly(ElementOrder order, const std::vector<std::array<int, 10>>& elements,
                   const std::vector<ElementGeometry>& geometry, const std::vector<const HyperelasticLaw*>& law,
-                  const DofMap& dofs, int threads);
+                  const DofMap& dofs, int threads, const NodalPressure* nodal = nullptr);
 
   struct Result {
     bool ok = true;
@@ -64,6 +71,11 @@ class ReducedAssembly {
   std::vector<double> buffer_;   ///< a chunk's reduced element matrices (slot layout)
   std::vector<double> forces_;   ///< a chunk's element forces (3 n per element)
   std::vector<double> energies_; ///< a chunk's element energies
+  const NodalPressure* nodal_ = nullptr;
+  /// Per patch, per node pair (i >= j in patch order), per reduced dof k of the column node: the
+  /// value slot of the pair's first row in that column (the rows of one node are contiguous).
+  std::vector<int> patch_slots_;
+  void add_patch_terms(const NodalPressure::State& state);
 };
 
 }  // namespace tissuemesh

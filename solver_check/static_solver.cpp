@@ -2,9 +2,11 @@
 
 #include "core/errors.h"
 #include "materials/make_law.h"
+#include "materials/volumetric_split.h"
 #include "solver_check/dof_map.h"
 #include "solver_check/element_kernel.h"
 #include "solver_check/linear_solver.h"
+#include "solver_check/nodal_pressure.h"
 #include "solver_check/reduced_assembly.h"
 
 #include <algorithm>
@@ -38,10 +40,18 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 /// Everything fixed for the whole solve: reference geometry, laws, load.
 struct Problem {
   std::vector<std::unique_ptr<HyperelasticLaw>> laws;  ///< per tissue
-  std::vector<const HyperelasticLaw*> law;             ///< per element
+  std::vector<std::unique_ptr<HyperelasticLaw>> shear_laws;  ///< per tissue, nodal pressure only
+  std::vector<const HyperelasticLaw*> law;             ///< per element: what the element integrates
+  std::vector<const HyperelasticLaw*> full_law;        ///< per element: the tissue's law
+  std::vector<int> tissue;                             ///< per element, 0-based
   std::vector<ElementGeometry> geometry;               ///< per element, model length unit
   Eigen::VectorXd f_ext;                               ///< global (3 per node), lambda = 1
+  std::unique_ptr<NodalPressure> nodal;                ///< tet4 with tet4_pressure: nodal
 };
+
+bool uses_nodal_pressure(const Model& model) {
+  return model.order == ElementOrder::Linear && model.analysis.tet4_pressure == Tet4Pressure::Nodal;
+}
 
 void check_model(const Model& model, const SolveOptions& options) {
   validate_model(model);
@@ -66,6 +76,9 @@ Problem build_problem(const Model& model, const SolveOptions& options) {
   Problem p;
   const UnitSystem units = model.units;
   for (const MaterialSpec& spec : model.materials) p.laws.push_back(make_law(spec, units));
+  const bool nodal = uses_nodal_pressure(model);
+  if (nodal)
+    for (const auto& law : p.laws) p.shear_laws.push_back(make_shear_part(*law));
 
   Eigen::Vector3d g;
   for (int i = 0; i < 3; ++i)
@@ -75,6 +88,8 @@ Problem build_problem(const Model& model, const SolveOptions& options) {
   p.f_ext = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(model.nodes.size()));
   p.geometry.resize(model.elements.size());
   p.law.resize(model.elements.size());
+  p.full_law.resize(model.elements.size());
+  p.tissue.resize(model.elements.size());
   ElementNodes X(n, 3);
   for (std::size_t e = 0; e < model.elements.size(); ++e) {
     for (int a = 0; a < n; ++a)
@@ -82,11 +97,14 @@ Problem build_problem(const Model& model, const SolveOptions& options) {
     if (element_geometry(model.order, X, p.geometry[e]) != ElementStatus::Ok)
       throw SolverError("element " + std::to_string(e) + " is inverted or flat in the reference configuration");
     const int tissue = model.tissue_ids[e] - 1;
-    p.law[e] = p.laws.at(tissue).get();
+    p.tissue[e] = tissue;
+    p.full_law[e] = p.laws.at(tissue).get();
+    p.law[e] = nodal ? p.shear_laws.at(tissue).get() : p.full_law[e];
     const double rho = density_from_kg_per_m3(units, model.materials[tissue].density_kg_m3);
     const ElementVector fb = element_body_force(model.order, X, rho, g);
     for (int a = 0; a < n; ++a) p.f_ext.segment<3>(3 * model.elements[e][a]) += fb.segment<3>(3 * a);
   }
+  if (nodal) p.nodal = std::make_unique<NodalPressure>(model.elements, p.geometry, p.tissue, p.full_law);
   return p;
 }
 
@@ -123,8 +141,8 @@ double residual_scale(const Eigen::VectorXd& load, const Eigen::VectorXd& f_int)
 }
 
 /// One load increment: Newton to lambda from the predicted reduced unknowns `guess`, or from
-/// `fallback` (the last accepted state) when the prediction inverts an element. On success `out`
-/// holds the new state.
+/// `fallback` (the last accepted state) when the prediction inverts an element or its first
+/// linear solve fails. On success `out` holds the new state.
 bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess, const Eigen::VectorXd& fallback,
                       State& out, StepRecord& record) {
   const DofMap& dofs = ctx.dofs;
@@ -133,22 +151,25 @@ bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess,
   const Eigen::VectorXd load_reduced = dofs.reduce(load);
 
   State trial;
-  trial.q = guess;
-  trial.u = dofs.expand(trial.q, lambda);
-  ReducedAssembly::Result current = ctx.assemble(trial.u, true);
-  if (!current.ok && guess != fallback) {
-    trial.q = fallback;
+  ReducedAssembly::Result current;
+  Eigen::VectorXd R;
+  double rnorm = 0.0, potential = 0.0, ref = 1.0;
+  // Newton's start: trial, its forces and residual at q; false when an element inverts there.
+  auto start_at = [&](const Eigen::VectorXd& q) {
+    trial.q = q;
     trial.u = dofs.expand(trial.q, lambda);
     current = ctx.assemble(trial.u, true);
-  }
-  if (!current.ok) {
+    if (!current.ok) return false;
+    R = load_reduced - dofs.reduce(current.f_int);
+    rnorm = R.norm();
+    potential = current.energy - load.dot(trial.u);  // total potential energy at trial.u
+    ref = residual_scale(load, current.f_int);
+    return true;
+  };
+  if (!start_at(guess) && (guess == fallback || !start_at(fallback))) {
     record.note = current.note;
     return false;
   }
-  Eigen::VectorXd R = load_reduced - dofs.reduce(current.f_int);
-  double rnorm = R.norm();
-  double potential = current.energy - load.dot(trial.u);  // total potential energy at trial.u
-  double ref = residual_scale(load, current.f_int);
   record.residual_norms.push_back(rnorm / ref);
   if (!std::isfinite(rnorm)) {
     record.note = "non-finite residual";
@@ -166,6 +187,18 @@ bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess,
     const double forcing = std::clamp(rnorm / ref, kMinForcing, kMaxForcing);
     const bool solved = ctx.linear.solve(ctx.assembly.tangent(), R, dq, forcing);
     ctx.linear_seconds += seconds_since(t);
+    if (!solved && it == 1 && trial.q != fallback) {
+      // The predicted state's tangent is too far from positive definite for the shift ladder
+      // (seen with the nodal-pressure tet4 after a doubled increment): start again from the last
+      // accepted state, whose tangent is that of a stable equilibrium, before cutting back.
+      if (!start_at(fallback)) {
+        record.note = current.note;
+        return false;
+      }
+      record.residual_norms.back() = rnorm / ref;
+      --it;
+      continue;
+    }
     if (!solved) {
       record.note = "linear solve failed (singular or non-finite tangent)";
       return false;
@@ -240,19 +273,26 @@ bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess,
 
 }  // namespace
 
+std::string formulation_name(const Model& model) {
+  if (model.order == ElementOrder::Quadratic) return "tet10";
+  return uses_nodal_pressure(model) ? "tet4, average nodal pressure" : "tet4";
+}
+
 SolveResult solve_static(const Model& model, const SolveOptions& options) {
   const auto start = Clock::now();
   check_model(model, options);
   const DofMap dofs(model, options.prescribed);
   const Problem problem = build_problem(model, options);
   const AnalysisSettings& s = model.analysis;
-  ReducedAssembly assembly(model.order, model.elements, problem.geometry, problem.law, dofs, options.threads);
+  ReducedAssembly assembly(model.order, model.elements, problem.geometry, problem.law, dofs, options.threads,
+                           problem.nodal.get());
   SparseSpdSolver linear(options.linear_solver);
   Context ctx{problem, dofs, s, assembly, linear};
 
   SolveResult result;
   result.free_dofs = dofs.num_free();
   result.linear_solver = linear.name();
+  result.formulation = formulation_name(model);
   result.threads = assembly.threads();
 
   State state;

@@ -36,15 +36,19 @@
 //   W(u) - load . u or ||R|| is taken; when none does, the un-inverted trial with the smallest
 //   ||R|| is taken.
 // - each increment starts from a secant prediction (the last increment's change, scaled), or
-//   from the last accepted state when that prediction inverts an element or after a cut-back.
+//   from the last accepted state when that prediction inverts an element, when the first linear
+//   solve there fails (a tangent too far from positive definite for the shift ladder), or after a
+//   cut-back.
 // - convergence of an increment: ||R_free|| <= residual_tolerance * max(||lambda f_ext||,
 //   ||f_int||) (norms over all dofs: the load's scale under gravity, the reactions' scale for a
 //   prescribed motion without load) AND ||delta q|| <= displacement_tolerance * ||q|| for the last
 //   correction, q the reduced unknowns (energy_tolerance is FEBio's and not used here).
-// - assembly runs in parallel over elements (OpenMP) into a precomputed sparsity pattern: the
-//   elements are coloured so that no two of one colour share a node, each colour is scattered in
-//   parallel and the colours in a fixed order, so every matrix entry is summed in the same order
-//   whatever the thread count: results are bit-for-bit deterministic.
+// - assembly runs in parallel over elements (OpenMP) into a precomputed sparsity pattern and is
+//   scattered in element order, so every matrix entry is summed in the same order whatever the
+//   thread count: results are bit-for-bit deterministic (solver_check/reduced_assembly.h).
+// - tet4 with model.analysis.tet4_pressure = nodal integrates each law's volumetric part U(J) per
+//   node and tissue instead of per element (average nodal pressure, solver_check/nodal_pressure.h):
+//   no volumetric locking at nu -> 0.5, a wider tangent. tet10 ignores the setting.
 //
 // Refused up front (nothing solved): anything validate_model refuses (InputError); a model with no
 // constraint at all (no Fixed set with nodes and nothing prescribed: InputError, it would float);
@@ -126,6 +130,7 @@ struct SolveResult {
   int total_iterations = 0;
   int free_dofs = 0;              ///< unknowns after constraints
   std::string linear_solver;      ///< "CHOLMOD supernodal LLT" or "Eigen SimplicialLDLT"
+  std::string formulation;       ///< formulation_name(model)
   int threads = 1;                ///< assembly threads used
   int factorisations = 0;         ///< numeric factorisations of the tangent
   int shifted_factorisations = 0; ///< of them, with a diagonal shift (tangent not positive definite)
@@ -139,6 +144,10 @@ struct SolveResult {
 
 /// Solves model under its gravity (scaled by options.gravity_scale). See the header comment.
 SolveResult solve_static(const Model& model, const SolveOptions& options = {});
+
+/// The element formulation solve_static uses for this model: "tet4", "tet4, average nodal
+/// pressure" (tet4 with analysis.tet4_pressure: nodal) or "tet10".
+std::string formulation_name(const Model& model);
 
 /// True when this build links CHOLMOD (SuiteSparse).
 bool cholmod_available();

@@ -82,6 +82,32 @@ TEST(HyperelasticLaws, TangentIsTwiceTheStressGradient) {
   }
 }
 
+TEST(HyperelasticLaws, VolumetricPartIsAFunctionOfJWithConsistentDerivatives) {
+  // U' and U'' against central differences (same step and tolerance as above).
+  const double h = 1e-6;
+  for (const auto& law : laws()) {
+    for (const double J : {0.8, 1.0, 1.07}) {
+      const HyperelasticLaw::Volumetric v = law->volumetric(J);
+      const double dU = (law->volumetric(J + h).U - law->volumetric(J - h).U) / (2 * h);
+      const double d2U = (law->volumetric(J + h).dU - law->volumetric(J - h).dU) / (2 * h);
+      EXPECT_NEAR(v.dU, dU, test::kFiniteDifferenceRel * std::max(1.0, std::abs(v.dU))) << law->name() << " " << J;
+      EXPECT_NEAR(v.d2U, d2U, test::kFiniteDifferenceRel * std::abs(v.d2U)) << law->name() << " " << J;
+    }
+  }
+  // The split itself: what is left, W - U(J), is the shear part of each law's formula.
+  const Eigen::Matrix3d C = sample_C();
+  const double J = std::sqrt(C.determinant());
+  auto nh = make_compressible_neo_hookean(1.3, 4.1);
+  EXPECT_NEAR(nh->energy(C) - nh->volumetric(J).U, 0.5 * 1.3 * (C.trace() - 3.0) - 1.3 * std::log(J),
+              test::kRelativeRoundoff);
+  // Uncoupled laws: a pure dilation C = J^(2/3) I has I1bar = 3, I2bar = 3, so W = U exactly.
+  for (const auto& law : laws()) {
+    if (law->name().rfind("uncoupled", 0) != 0) continue;
+    const Eigen::Matrix3d dilation = std::pow(J, 2.0 / 3.0) * Eigen::Matrix3d::Identity();
+    EXPECT_NEAR(law->energy(dilation), law->volumetric(J).U, test::kRelativeRoundoff) << law->name();
+  }
+}
+
 TEST(HyperelasticLaws, ReferenceAndRigidRotationAreStressFree) {
   // C = R^T R = I for any rotation R: no energy, no stress.
   const Eigen::Matrix3d R = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d(1, 2, 2).normalized()).toRotationMatrix();

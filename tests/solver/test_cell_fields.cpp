@@ -48,9 +48,8 @@ Eigen::Matrix3d mooney_rivlin_cauchy(const MaterialSpec& m, const Eigen::Matrix3
 
 class HomogeneousDeformation : public ::testing::TestWithParam<std::tuple<ElementOrder, UnitSystem>> {};
 
-TEST_P(HomogeneousDeformation, GivesTheAnalyticCauchyStressAndJInEveryCell) {
-  const auto [order, units] = GetParam();
-  const Model model = block(order, units);
+/// Every cell of `model` under u = (F - I) X has the analytic Cauchy stress, J and von Mises.
+void expect_analytic_fields(const Model& model) {
   Eigen::Matrix3d F;
   F << 1.05, 0.02, 0.01,  //
       0.03, 0.97, 0.04,   //
@@ -68,6 +67,20 @@ TEST_P(HomogeneousDeformation, GivesTheAnalyticCauchyStressAndJInEveryCell) {
     for (int k = 0; k < 6; ++k) ASSERT_NEAR(f.cauchy_stress_Pa[e][k], expected[k], tol) << "element " << e << " " << k;
     ASSERT_NEAR(f.J[e], F.determinant(), test::kStressRoundoffRel) << e;
     ASSERT_NEAR(f.von_mises_Pa[e], von_mises(expected), tol) << e;
+  }
+}
+
+TEST_P(HomogeneousDeformation, GivesTheAnalyticCauchyStressAndJInEveryCell) {
+  const auto [order, units] = GetParam();
+  expect_analytic_fields(block(order, units));
+}
+
+TEST(CellFields, NodalPressureTet4GivesTheAnalyticStressUnderHomogeneousDeformation) {
+  // Every patch then has the element's J: shear part + mean nodal pressure = the full law's stress.
+  for (UnitSystem units : {UnitSystem::MillimetreTonneSecond, UnitSystem::SI}) {
+    Model model = block(ElementOrder::Linear, units);
+    model.analysis.tet4_pressure = Tet4Pressure::Nodal;
+    expect_analytic_fields(model);
   }
 }
 

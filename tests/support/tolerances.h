@@ -196,4 +196,10 @@ constexpr double kLinearPartRel = 1e-6;
 /// stress at the reference state is off by 1e-8 of mu already fails it.
 constexpr double kHomogeneousStateRel = 1e-9;
 
+/// Nodal-pressure tet4 against tet10 on the same nearly incompressible mesh: both are locking-free
+/// discretisations of one problem and differ by their discretisation errors. Max sag of the block
+/// fixture (2 mm grid): nodal tet4 9.4 % below tet10; refined to 1 mm, 3.0 % (tet10 itself moves
+/// 0.8 %), while the standard tet4 is 48 % and 37 % below: 15 % separates the two by 3x.
+constexpr double kLockingFreeRel = 0.15;
+
 }  // namespace tissuemesh::test

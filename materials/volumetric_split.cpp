@@ -1,0 +1,43 @@
+#include "materials/volumetric_split.h"
+
+#include "materials/tensor4.h"
+
+#include <Eigen/LU>
+
+#include <cmath>
+
+namespace tissuemesh {
+
+namespace {
+
+class ShearPart : public HyperelasticLaw {
+ public:
+  explicit ShearPart(const HyperelasticLaw& full) : full_(full) {}
+  std::string name() const override { return full_.name() + " without U(J)"; }
+  double energy(const Eigen::Matrix3d& C) const override {
+    return full_.energy(C) - full_.volumetric(std::sqrt(C.determinant())).U;
+  }
+  Eigen::Matrix3d pk2(const Eigen::Matrix3d& C) const override {
+    const double J = std::sqrt(C.determinant());
+    return full_.pk2(C) - J * full_.volumetric(J).dU * C.inverse();
+  }
+  Tangent6 tangent(const Eigen::Matrix3d& C) const override {
+    const double J = std::sqrt(C.determinant());
+    const Volumetric v = full_.volumetric(J);
+    const Eigen::Matrix3d Ci = C.inverse();
+    return full_.tangent(C) - J * (v.dU + J * v.d2U) * tensor4::outer(Ci, Ci) +
+           2.0 * J * v.dU * tensor4::sym_product(Ci);
+  }
+  Volumetric volumetric(double) const override { return {}; }
+
+ private:
+  const HyperelasticLaw& full_;
+};
+
+}  // namespace
+
+std::unique_ptr<HyperelasticLaw> make_shear_part(const HyperelasticLaw& full) {
+  return std::make_unique<ShearPart>(full);
+}
+
+}  // namespace tissuemesh
