@@ -204,6 +204,19 @@ TEST(OgdenLaw, TwoTermsAreTheSumOfTheirTerms) {
   }
 }
 
+TEST(OgdenLaw, VolumetricPartIsTheEnergyOfAPureDilation) {
+  // C = J^(2/3) I has unit isochoric stretches, so W = U(J) = K/2 (J - 1)^2; U' and U'' follow.
+  for (const auto& p : params()) {
+    const auto law = p.make();
+    for (const double J : {0.9, 1.08}) {
+      const HyperelasticLaw::Volumetric v = law->volumetric(J);
+      EXPECT_NEAR(law->energy(std::pow(J, 2.0 / 3.0) * kI), v.U, test::kRelativeRoundoff * p.K) << law->name();
+      EXPECT_NEAR(v.dU, p.K * (J - 1.0), test::kRelativeRoundoff * p.K) << law->name();
+      EXPECT_NEAR(v.d2U, p.K, test::kRelativeRoundoff * p.K) << law->name();
+    }
+  }
+}
+
 TEST(OgdenLaw, ReferenceAndRigidRotationAreStressFree) {
   const Eigen::Matrix3d R = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d(1, 2, 2).normalized()).toRotationMatrix();
   for (const auto& p : params()) {
