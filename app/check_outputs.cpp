@@ -7,6 +7,7 @@
 #include "fe_export/registry.h"
 #include "solver_check/calculix_dat.h"
 #include "solver_check/calculix_run.h"
+#include "solver_check/nodal_pressure.h"
 
 #include <cmath>
 #include <cstdio>
@@ -164,7 +165,7 @@ Model calculix_comparable_model(const Model& model, std::vector<std::string>& no
                     "neo-hookean (Abaqus NEO HOOKE, C10 = mu/2 = " + format_double("%g", m.C10_Pa) + " Pa, same mu " +
                     format_double("%g", m.mu_Pa) + " Pa and K " + format_double("%g", m.K_Pa) + " Pa) for this check");
   }
-  if (comparable.order == ElementOrder::Linear && comparable.analysis.tet4_pressure == Tet4Pressure::Nodal) {
+  if (uses_nodal_pressure(comparable)) {
     comparable.analysis.tet4_pressure = Tet4Pressure::Element;
     notes.push_back("tet4_pressure: nodal is the built-in solver's own element; CalculiX's C3D4 integrates the "
                     "volume term per element, so both solvers use the standard tet4 for this check");

@@ -67,7 +67,7 @@ CellFields cell_fields(const Model& model, const std::vector<Eigen::Vector3d>& d
 
   const ElementOrder order = model.order;
   // Nodal-pressure tet4: the element stress of W_rest plus pbar_e I (solver_check/nodal_pressure.h).
-  const bool nodal = order == ElementOrder::Linear && model.analysis.tet4_pressure == Tet4Pressure::Nodal;
+  const bool nodal = uses_nodal_pressure(model);
   std::vector<std::unique_ptr<HyperelasticLaw>> shear;
   std::vector<double> pressure(model.elements.size(), 0.0);
   if (nodal) {

@@ -11,6 +11,10 @@
 
 namespace tissuemesh {
 
+bool uses_nodal_pressure(const Model& model) {
+  return model.order == ElementOrder::Linear && model.analysis.tet4_pressure == Tet4Pressure::Nodal;
+}
+
 NodalPressure::NodalPressure(const std::vector<std::array<int, 10>>& elements,
                              const std::vector<ElementGeometry>& geometry, const std::vector<int>& tissue,
                              const std::vector<const HyperelasticLaw*>& law)
@@ -48,6 +52,12 @@ NodalPressure::NodalPressure(const std::vector<std::array<int, 10>>& elements,
     for (int e : m) nodes.insert(nodes.end(), elements[e].begin(), elements[e].begin() + 4);
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    for (int e : m) {
+      std::array<int, 4> local;
+      for (int b = 0; b < 4; ++b)
+        local[b] = static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), elements[e][b]) - nodes.begin());
+      corner_in_patch_.push_back(local);
+    }
     patch_nodes_.insert(patch_nodes_.end(), nodes.begin(), nodes.end());
     node_start_.push_back(static_cast<int>(patch_nodes_.size()));
   }
@@ -82,19 +92,18 @@ NodalPressure::State NodalPressure::evaluate(const Eigen::VectorXd& u, int threa
       s.failed_J = det[e];
       return s;
     }
+  std::vector<double> dU(np), energy(np);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int p = 0; p < np; ++p) {
     double v = 0.0;
     for (int k = element_start_[p]; k < element_start_[p + 1]; ++k) v += s.volume[patch_elements_[k]] / 4.0;
     s.J[p] = v / patch_volume_[p];
-    s.stiffness[p] = patch_law_[p]->volumetric(s.J[p]).d2U / patch_volume_[p];
+    const HyperelasticLaw::Volumetric vol = patch_law_[p]->volumetric(s.J[p]);
+    dU[p] = vol.dU;
+    energy[p] = patch_volume_[p] * vol.U;
+    s.stiffness[p] = vol.d2U / patch_volume_[p];
   }
-  std::vector<double> dU(np);
-  for (int p = 0; p < np; ++p) {
-    const HyperelasticLaw::Volumetric v = patch_law_[p]->volumetric(s.J[p]);
-    dU[p] = v.dU;
-    s.energy += patch_volume_[p] * v.U;
-  }
+  for (int p = 0; p < np; ++p) s.energy += energy[p];  // in patch order: deterministic
   for (int e = 0; e < ne; ++e) {
     double sum = 0.0;
     for (int a = 0; a < 4; ++a) sum += dU[corner_patch_[e][a]];
@@ -122,16 +131,9 @@ void NodalPressure::add_element_terms(const State& s, int e, ElementVector& forc
 }
 
 void NodalPressure::patch_gradient(const State& s, int p, std::vector<Eigen::Vector3d>& d) const {
-  const int* nodes = patch_nodes_begin(p);
-  const int m = static_cast<int>(patch_nodes_end(p) - nodes);
-  d.assign(m, Eigen::Vector3d::Zero());
-  for (int k = element_start_[p]; k < element_start_[p + 1]; ++k) {
-    const int e = patch_elements_[k];
-    for (int b = 0; b < 4; ++b) {
-      const int local = static_cast<int>(std::lower_bound(nodes, nodes + m, elements_[e][b]) - nodes);
-      d[local] += s.dv[e].row(b).transpose() / 4.0;
-    }
-  }
+  d.assign(patch_nodes_end(p) - patch_nodes_begin(p), Eigen::Vector3d::Zero());
+  for (int k = element_start_[p]; k < element_start_[p + 1]; ++k)
+    for (int b = 0; b < 4; ++b) d[corner_in_patch_[k][b]] += s.dv[patch_elements_[k]].row(b).transpose() / 4.0;
 }
 
 }  // namespace tissuemesh

@@ -33,6 +33,10 @@
 
 namespace tissuemesh {
 
+/// True when the built-in solver integrates this model's volumetric energy per node: tet4 with
+/// analysis.tet4_pressure = nodal (tet10 ignores the setting).
+bool uses_nodal_pressure(const Model& model);
+
 class NodalPressure {
  public:
   /// tet4 `elements` (first 4 entries), their reference `geometry` (element_geometry, 1 point),
@@ -78,6 +82,8 @@ class NodalPressure {
   std::vector<double> patch_volume_;     ///< V_p
   std::vector<const HyperelasticLaw*> patch_law_;
   std::vector<int> element_start_, patch_elements_;  ///< CSR: the elements of each patch, ascending
+  /// Parallel to patch_elements_: each corner's index in its patch's node list.
+  std::vector<std::array<int, 4>> corner_in_patch_;
   std::vector<int> node_start_, patch_nodes_;        ///< CSR: the nodes of each patch, sorted
   std::vector<std::array<int, 4>> corner_patch_;     ///< per element: the patch of each corner
 };

@@ -49,10 +49,6 @@ struct Problem {
   std::unique_ptr<NodalPressure> nodal;                ///< tet4 with tet4_pressure: nodal
 };
 
-bool uses_nodal_pressure(const Model& model) {
-  return model.order == ElementOrder::Linear && model.analysis.tet4_pressure == Tet4Pressure::Nodal;
-}
-
 void check_model(const Model& model, const SolveOptions& options) {
   validate_model(model);
   for (std::size_t t = 0; t < model.materials.size(); ++t)
