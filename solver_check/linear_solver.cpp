@@ -56,6 +56,7 @@ struct SparseSpdSolver::Impl {
 #endif
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
   bool analysed = false;
+  double factor_entries = 0.0, factor_flops = 0.0;
 
   Eigen::VectorXd apply_factor(const Eigen::VectorXd& r) {
 #ifdef TISSUEMESH_HAVE_CHOLMOD
@@ -82,6 +83,8 @@ struct SparseSpdSolver::Impl {
         c.zrelax[1] *= 2;
         c.zrelax[2] *= 2;
         cholmod.analyzePattern(K);
+        factor_entries = c.lnz;
+        factor_flops = c.fl;
         analysed = true;
       }
       if (!known_indefinite) {
@@ -117,6 +120,8 @@ struct SparseSpdSolver::Impl {
       analysed = true;
     }
     ldlt.factorize(K);
+    if (ldlt.info() == Eigen::Success)  // the same after every factorisation (pattern fixed by the analysis)
+      factor_entries = static_cast<double>(ldlt.matrixL().nestedExpression().nonZeros() + K.rows());
     return exact_factor = ldlt.info() == Eigen::Success;
   }
 
@@ -159,6 +164,9 @@ SparseSpdSolver::SparseSpdSolver(LinearSolverKind kind) : impl_(std::make_unique
 }
 
 SparseSpdSolver::~SparseSpdSolver() = default;
+
+double SparseSpdSolver::factor_entries() const { return impl_->factor_entries; }
+double SparseSpdSolver::factor_flops() const { return impl_->factor_flops; }
 
 std::string SparseSpdSolver::name() const {
   return impl_->use_cholmod ? "CHOLMOD supernodal LLT" : "Eigen SimplicialLDLT";

@@ -56,6 +56,14 @@ class SparseSpdSolver {
   int iterations() const { return iterations_; }
   /// Wall time spent in numeric factorisations (including failed, unshifted attempts).
   double factorisation_seconds() const { return factorisation_seconds_; }
+  /// Entries of the triangular factor L, diagonal included (what a factorisation stores and
+  /// costs, with factor_flops()): CHOLMOD's count from the symbolic analysis, explicit zeros of
+  /// amalgamated supernodes included; Eigen's the factor's nonzeros plus the diagonal. 0 before
+  /// the first factorisation.
+  double factor_entries() const;
+  /// Floating-point operations of one numeric factorisation (CHOLMOD's count from the symbolic
+  /// analysis); 0 for Eigen's SimplicialLDLT, which does not count them.
+  double factor_flops() const;
 
  private:
   struct Impl;

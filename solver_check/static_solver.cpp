@@ -366,6 +366,8 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   result.failed_factorisations = linear.failed_factorisations();
   result.linear_iterations = linear.iterations();
   result.factorisation_seconds = linear.factorisation_seconds();
+  result.factor_entries = linear.factor_entries();
+  result.factor_flops = linear.factor_flops();
   if (result.converged) {
     std::ostringstream msg;
     msg << "converged: " << result.steps.size() << " increments, " << result.total_iterations

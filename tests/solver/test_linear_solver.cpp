@@ -107,5 +107,25 @@ TEST_F(CholmodSolver, NegativeCurvatureInConjugateGradientsSkipsTheUnshiftedTry)
   EXPECT_NEAR(x[kSize - 1], expected, kRelativeRoundoff * expected);
 }
 
+// The factor of the tridiagonal K (49 unknowns) plus a decoupled one has no fill with a
+// fill-reducing ordering: 49 + 48 off-diagonal + 1 = 98 entries. SimplicialLDLT (AMD) stores
+// exactly those; CHOLMOD's supernodes may add explicit zeros, never fewer than K's lower triangle.
+TEST(LinearSolverFactor, SizeIsReportedAfterTheFirstFactorisation) {
+  const SparseMatrix K = matrix(3.0, 1.0);
+  const Eigen::VectorXd b = ramp();
+  Eigen::VectorXd x;
+  SparseSpdSolver ldlt(LinearSolverKind::SimplicialLDLT);
+  EXPECT_EQ(ldlt.factor_entries(), 0.0);
+  ASSERT_TRUE(ldlt.solve(K, b, x, 1e-4));
+  EXPECT_EQ(ldlt.factor_entries(), 98.0);
+  EXPECT_EQ(ldlt.factor_flops(), 0.0);  // not counted by Eigen
+  if (!cholmod_available()) return;
+  SparseSpdSolver cholmod(LinearSolverKind::Cholmod);
+  ASSERT_TRUE(cholmod.solve(K, b, x, 1e-4));
+  EXPECT_GE(cholmod.factor_entries(), static_cast<double>(K.nonZeros()));
+  EXPECT_LE(cholmod.factor_entries(), kSize * (kSize + 1) / 2.0);
+  EXPECT_GT(cholmod.factor_flops(), 0.0);
+}
+
 }  // namespace
 }  // namespace tissuemesh
