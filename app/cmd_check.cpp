@@ -42,8 +42,9 @@ void add_check_command(CLI::App& cli, Invocation& run) {
                 "the uncoupled neo-hookean (noted)");
   sub->add_flag("--tetgen", opt->tetgen,
                 "TetGen 1.5 on MESH's boundary and interface triangles (config `tetgen:`): per-tissue volumes, "
-                "counts, dihedral angles, interface areas, and the --target tissue's mean displacement under "
-                "gravity on both meshes (built-in solver)");
+                "counts, dihedral angles, interface areas, the radius-edge ratio against tetgen.radius_edge_ratio "
+                "and against the bound the input triangles force, and the --target tissue's mean displacement "
+                "under gravity on both meshes (built-in solver)");
   sub->add_flag("--gmsh", opt->gmsh,
                 "the Gmsh SDK's gamma and SICN of every tet of MESH against our radius ratio and SICN: per-tissue "
                 "minima and means by both, largest per-tet difference; exit 1 when they disagree");

@@ -6,6 +6,7 @@
 #include "core/errors.h"
 #include "core/vtu_io.h"
 #include "mesher/conformity.h"
+#include "mesher/forced_radius_edge.h"
 #include "mesher/mesh_interfaces.h"
 #include "mesher/mesh_quality.h"
 #include "mesher/tetgen_mesher.h"
@@ -65,6 +66,45 @@ nlohmann::json side_json(const TissueQuality& q) {
           {"tets_radius_edge_above_2", q.tets_radius_edge_above_2}};
 }
 
+// The triangle that sets the forced ratio: its interface and centroid (mm).
+std::string interface_name(const TriSurface& s, const TetMesh& mesh, int t) {
+  return region_name(mesh, s.labels[t][0]) + "|" + region_name(mesh, s.labels[t][1]);
+}
+
+Eigen::Vector3d centroid(const TriSurface& s, int t) {
+  const auto& k = s.triangles[t];
+  return (s.points[k[0]] + s.points[k[1]] + s.points[k[2]]) / 3.0;
+}
+
+nlohmann::json forced_json(const ForcedRadiusEdge& f, const TriSurface& s, const TetMesh& mesh) {
+  nlohmann::json j = {{"ratio", f.ratio}, {"input_triangles_above_bound", f.triangles_above_bound}};
+  if (f.triangle < 0) return j;
+  nlohmann::json corners = nlohmann::json::array();
+  for (int v : s.triangles[f.triangle]) corners.push_back(vec_json(s.points[v]));
+  j["triangle"] = {{"index", f.triangle},
+                   {"interface", interface_name(s, mesh, f.triangle)},
+                   {"min_angle_deg", f.min_angle_deg},
+                   {"centroid_mm", vec_json(centroid(s, f.triangle))},
+                   {"vertices_mm", corners}};
+  return j;
+}
+
+// The stdout lines of the forced ratio (mesher/forced_radius_edge.h).
+std::string forced_text(const ForcedRadiusEdge& f, const TriSurface& s, const TetMesh& mesh, const std::string& bound) {
+  if (f.triangle < 0) return "";
+  const Eigen::Vector3d c = centroid(s, f.triangle);
+  std::ostringstream text;
+  text << "  forced by the input (each input triangle stays a tet face: TetGen -Y, MESH): ratio >= 1 / (2 sin(smallest "
+          "triangle angle)), largest "
+       << format_double("%.3f", f.ratio) << " (" << interface_name(s, mesh, f.triangle) << " triangle " << f.triangle
+       << ", " << format_double("%.2f", f.min_angle_deg) << " deg, centroid (" << format_double("%.2f", c.x()) << ", "
+       << format_double("%.2f", c.y()) << ", " << format_double("%.2f", c.z()) << ") mm)\n"
+       << "  input triangles forcing more than " << bound << ": " << f.triangles_above_bound << " of "
+       << s.triangles.size()
+       << (f.triangles_above_bound > 0 ? " (no mesh keeping them meets the bound)\n" : "\n");
+  return text.str();
+}
+
 }  // namespace
 
 TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, const JobConfig& config,
@@ -87,10 +127,16 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   QualityReport q_mesh, q_tg;
   ConformityReport c_mesh, c_tg;
   std::map<std::pair<int, int>, double> a_mesh, a_tg;
+  const double bound = config.mesh.tetgen.radius_edge_ratio;
+  std::size_t above_mesh = 0, above_tg = 0;
+  ForcedRadiusEdge forced;
   {
     auto stage = progress.stage("compare the meshes");
     q_mesh = compute_quality(mesh);
     q_tg = compute_quality(tg.mesh);
+    above_mesh = count_radius_edge_above(mesh, bound);
+    above_tg = count_radius_edge_above(tg.mesh, bound);
+    forced = forced_radius_edge_ratio(surface, bound);
     c_mesh = check_conformity(mesh);
     c_tg = check_conformity(tg.mesh);
     a_mesh = interface_areas(surface);
@@ -122,10 +168,12 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   };
   for (std::size_t i = 0; i < q_mesh.tissues.size(); ++i) row(q_mesh.tissues[i], q_tg.tissues[i]);
   row(q_mesh.total, q_tg.total);
-  text << "  radius-edge ratio (circumradius / shortest edge, TetGen's -q measure): max "
-       << format_double("%.3f", q_mesh.total.max_radius_edge_ratio) << " MESH, "
-       << format_double("%.3f", q_tg.total.max_radius_edge_ratio) << " TetGen; tets above 2: "
-       << q_mesh.total.tets_radius_edge_above_2 << " MESH, " << q_tg.total.tets_radius_edge_above_2 << " TetGen\n";
+  const std::string bound_text = format_double("%g", bound);
+  text << "  radius-edge ratio (circumradius / shortest edge, TetGen's -q measure; tetgen.radius_edge_ratio "
+       << bound_text << "): max " << format_double("%.3f", q_mesh.total.max_radius_edge_ratio) << " MESH, "
+       << format_double("%.3f", q_tg.total.max_radius_edge_ratio) << " TetGen; tets above " << bound_text << ": "
+       << above_mesh << " MESH, " << above_tg << " TetGen\n";
+  text << forced_text(forced, surface, mesh, bound_text);
 
   nlohmann::json interfaces = nlohmann::json::array();
   text << "\n  interface            area [mm^2]     TG [mm^2]   diff [%]\n";
@@ -158,6 +206,10 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
                       {"switches", tg.switches},
                       {"steiner_points", tg.steiner_points},
                       {"input_triangles", surface.triangles.size()},
+                      {"radius_edge_ratio_bound", bound},
+                      {"tets_above_radius_edge_bound", above_tg},
+                      {"mesh_tets_above_radius_edge_bound", above_mesh},
+                      {"radius_edge_ratio_forced_by_input", forced_json(forced, surface, mesh)},
                       {"mesh", out.final_path("mesh_tetgen.vtu").string()}};
   record["tissues"] = tissues;
   record["interfaces"] = interfaces;

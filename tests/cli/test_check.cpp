@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -175,6 +176,19 @@ TEST_F(Check, TetgenMeshesTheSameGeometryAndMovesTheTumorAlike) {
             tg_quality.total.tets_radius_edge_above_2);
   std::cout << "[ check    ] block: TetGen max radius-edge ratio " << tg_quality.total.max_radius_edge_ratio << ", "
             << tg_quality.total.tets_radius_edge_above_2 << " tets above 2\n";
+  // The configured bound (default 2) and the ratio the input forces: the block's faces are right
+  // isosceles triangles (1 / (2 sin 45 deg) = 1/sqrt 2), and no mesh keeping them goes below it.
+  const auto& tetgen = record["tetgen"];
+  EXPECT_EQ(tetgen["radius_edge_ratio_bound"].get<double>(), 2.0);
+  EXPECT_EQ(tetgen["tets_above_radius_edge_bound"].get<std::size_t>(), tg_quality.total.tets_radius_edge_above_2);
+  EXPECT_EQ(tetgen["mesh_tets_above_radius_edge_bound"].get<std::size_t>(), total["mesh"]["tets_radius_edge_above_2"].get<std::size_t>());
+  const auto& forced = tetgen["radius_edge_ratio_forced_by_input"];
+  EXPECT_NEAR(forced["ratio"].get<double>(), 1.0 / std::sqrt(2.0), test::kRelativeRoundoff);
+  EXPECT_NEAR(forced["triangle"]["min_angle_deg"].get<double>(), 45.0, test::kAngleDeg);
+  EXPECT_EQ(forced["input_triangles_above_bound"].get<std::size_t>(), 0u);
+  EXPECT_EQ(forced["triangle"]["vertices_mm"].size(), 3u);
+  EXPECT_GE(tg_quality.total.max_radius_edge_ratio, forced["ratio"].get<double>() * (1.0 - test::kRelativeRoundoff));
+  EXPECT_NE(r.out.find("forced by the input ("), std::string::npos) << r.out;
   for (const auto& f : record["interfaces"])
     EXPECT_NEAR(f["tetgen_area_mm2"].get<double>(), f["mesh_area_mm2"].get<double>(),
                 test::kRelativeRoundoff * f["mesh_area_mm2"].get<double>())
