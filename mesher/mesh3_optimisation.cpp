@@ -16,6 +16,7 @@ void Mesh3Optimisation::read(YamlMap& m) {
   flip_slivers_below_deg = m.in_range("flip_slivers_below_deg", flip_slivers_below_deg, 0.0, 60.0);
   interface_flips = m.boolean("interface_flips", interface_flips);
   smooth_slivers_below_deg = m.in_range("smooth_slivers_below_deg", smooth_slivers_below_deg, 0.0, 60.0);
+  smooth_near_planar_deg = m.in_range("smooth_near_planar_deg", smooth_near_planar_deg, 0.0, 30.0);
 }
 
 void Mesh3Optimisation::emit(YAML::Emitter& out) const {
@@ -30,6 +31,7 @@ void Mesh3Optimisation::emit(YAML::Emitter& out) const {
   out << YAML::Key << "flip_slivers_below_deg" << YAML::Value << flip_slivers_below_deg;
   out << YAML::Key << "interface_flips" << YAML::Value << interface_flips;
   out << YAML::Key << "smooth_slivers_below_deg" << YAML::Value << smooth_slivers_below_deg;
+  out << YAML::Key << "smooth_near_planar_deg" << YAML::Value << smooth_near_planar_deg;
 }
 
 SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings) {
@@ -45,7 +47,7 @@ SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std
   if (options.flip_slivers_below_deg > 0)
     r.sliver_flips = flip_slivers(mesh, options.flip_slivers_below_deg, options.interface_flips);
   if (options.smooth_slivers_below_deg > 0)
-    r.sliver_smoothing = smooth_slivers(mesh, options.smooth_slivers_below_deg);
+    r.sliver_smoothing = smooth_slivers(mesh, options.smooth_slivers_below_deg, options.smooth_near_planar_deg);
   return r;
 }
 

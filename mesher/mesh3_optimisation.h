@@ -39,6 +39,11 @@ struct Mesh3Optimisation {
   /// flat boundary or interface within its plane; interfaces, boundary and volumes unchanged.
   /// 0 = off.
   double smooth_slivers_below_deg = 15.0;
+  /// Let that smoothing also move vertices of nearly flat boundary or interface patches (face
+  /// normals within this angle, degrees) in the plane that keeps every tissue's volume: the
+  /// surface moves off its place by at most sin(2 x this angle) times the move (sliver_smoothing.h).
+  /// 0 = off (exactly flat patches only).
+  double smooth_near_planar_deg = 0.0;
 
   /// Reads these keys from the open section map `m` (range-checked, the key named in errors);
   /// keys absent keep the defaults above.

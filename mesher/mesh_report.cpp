@@ -95,7 +95,7 @@ std::string sliver_repair_text(const SliverRepair& repair) {
   s << "boundary slivers removed: " << b.tets_removed << " tets, " << fmt("%.4f mm^3\n", b.volume_removed_mm3);
   s << "sliver flips: " << f.flips_23 << " 2-3 flips, " << f.edge_removals << " edge removals (" << f.interface_flips
     << " across interfaces, " << fmt("%.4f mm^3 moved", f.volume_relabelled_mm3) << ") in " << f.passes << " passes\n";
-  s << "sliver smoothing: " << repair.sliver_smoothing.moved_vertices << " vertex moves (inside a tissue or within a flat boundary or interface) in "
+  s << "sliver smoothing: " << repair.sliver_smoothing.moved_vertices << " vertex moves (inside a tissue or within a flat or nearly flat boundary or interface) in "
     << repair.sliver_smoothing.passes << " passes\n";
   return s.str();
 }

@@ -15,6 +15,11 @@ namespace tissuemesh {
 namespace {
 
 constexpr int kMaxRing = 7;  // edge removal beyond 7 tets rarely helps and grows as n^3
+// A wedge may change tissue when its volume is below this fraction of the regular tet on its
+// longest edge (L^3 / (6 sqrt 2)): its four nodes are then close to one plane, so the interface
+// moves by little. 0.2: at 2.1K the fgt wedge next to the flattest fat tet (9.04 degrees) is at
+// 0.155; moved volumes stay below 0.2 L^3 / 8.5, e.g. 0.16 mm^3 at L = 1.9 mm.
+constexpr double kFlatWedge = 0.2;
 
 struct NewTet {
   std::array<int, 4> v;
@@ -80,8 +85,12 @@ class FlipMesh {
   }
 
   // Tries removing edge (p,q) of tet t: a closed ring of tets around it, all of `tissue` except
-  // possibly t itself (an interface flip relabels t).
-  bool try_edge_removal(int t, int p, int q, int tissue, std::vector<NewTet>& out, std::vector<int>& old) const {
+  // possibly t itself (an interface flip relabels t) or, when `wedge` is given, one other tet of
+  // the ring that is a thin wedge of another tissue on `tissue`'s interface (relabelled; its
+  // index is returned in *wedge, else -1).
+  bool try_edge_removal(int t, int p, int q, int tissue, std::vector<NewTet>& out, std::vector<int>& old,
+                        int* wedge = nullptr) const {
+    if (wedge) *wedge = -1;
     const auto& T = m_.tets[t];
     int r = -1, s = -1;
     for (int x : T)
@@ -92,7 +101,11 @@ class FlipMesh {
       if (static_cast<int>(ring.size()) >= kMaxRing) return false;
       ring.push_back(next);
       const int nb = across(p, q, next, cur);
-      if (nb < 0 || m_.tissue_ids[nb] != tissue) return false;  // boundary or interface edge
+      if (nb < 0) return false;  // boundary edge
+      if (m_.tissue_ids[nb] != tissue) {  // interface edge: only one thin wedge may be relabelled
+        if (!wedge || *wedge >= 0 || wedge_tissue(nb, p, q) != tissue) return false;
+        *wedge = nb;
+      }
       int w = -1;
       for (int x : m_.tets[nb])
         if (x != p && x != q && x != next) w = x;
@@ -161,7 +174,7 @@ class FlipMesh {
   // Tissue B of the two tets across the faces of t that contain edge (p,q), when t is a flat
   // wedge on B's interface that can be given to B without changing anything else: t's other two
   // faces border t's own tissue A, every other tet around the opposite edge (r,s) is A (so A
-  // stays face-connected there), and t is flat. -1 otherwise.
+  // stays face-connected there), and t is flat (kFlatWedge). -1 otherwise.
   int wedge_tissue(int t, int p, int q) const {
     int other[2], n = 0;
     for (int x : m_.tets[t])
@@ -174,12 +187,12 @@ class FlipMesh {
     const int n3 = across(r, s, p, t), n4 = across(r, s, q, t);
     if (n3 < 0 || n4 < 0 || m_.tissue_ids[n3] != a || m_.tissue_ids[n4] != a) return -1;
     if (!all_around_edge_are(r, s, t, a)) return -1;
-    // Flat: volume under a tenth of the regular tet on its longest edge (L^3 / (6 sqrt 2)).
+    // Flat: volume under kFlatWedge times the regular tet on its longest edge (L^3 / (6 sqrt 2)).
     const auto& T = m_.tets[t];
     double longest = 0;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (m_.points[T[i]] - m_.points[T[j]]).norm());
-    if (volume(T) > 0.1 * longest * longest * longest / (6.0 * std::sqrt(2.0))) return -1;
+    if (volume(T) > kFlatWedge * longest * longest * longest / (6.0 * std::sqrt(2.0))) return -1;
     return b;
   }
 
@@ -275,8 +288,9 @@ SliverFlipResult flip_slivers(TetMesh& mesh, double target_deg, bool allow_inter
       std::vector<NewTet> best_new, cand;
       std::vector<int> best_old, cand_old;
       double best_q = -1;
-      int best_kind = 0, best_tissue = fm.tissue(t);  // kind: 0 edge removal, 1 2-3, 2 interface
-      auto consider = [&](bool ok, int kind, int tissue) {
+      int best_kind = 0, best_tissue = fm.tissue(t);  // kind: 0 edge removal, 1 2-3
+      int best_wedge = -1;                            // the tet that changes tissue, if any
+      auto consider = [&](bool ok, int kind, int tissue, int wedge) {
         if (!ok) return;
         double q_new = 1e300, q_old = 1e300;
         for (const auto& n : cand) q_new = std::min(q_new, n.quality);
@@ -287,19 +301,25 @@ SliverFlipResult flip_slivers(TetMesh& mesh, double target_deg, bool allow_inter
           best_old = cand_old;
           best_kind = kind;
           best_tissue = tissue;
+          best_wedge = wedge;
         }
       };
       const auto T = fm.tet(t);
       for (const auto& e : kEdges) {
-        consider(fm.try_edge_removal(t, T[e[0]], T[e[1]], fm.tissue(t), cand, cand_old), 0, fm.tissue(t));
+        // Inside t's tissue, or giving one thin wedge of the ring (not t) to t's tissue.
+        int neighbour = -1;
+        const bool ok = fm.try_edge_removal(t, T[e[0]], T[e[1]], fm.tissue(t), cand, cand_old,
+                                            allow_interface_flips ? &neighbour : nullptr);
+        consider(ok, 0, fm.tissue(t), neighbour);
+        // Giving t itself, a thin wedge, to the tissue around the edge.
         const int wedge = allow_interface_flips ? fm.wedge_tissue(t, T[e[0]], T[e[1]]) : -1;
-        if (wedge > 0) consider(fm.try_edge_removal(t, T[e[0]], T[e[1]], wedge, cand, cand_old), 2, wedge);
+        if (wedge > 0) consider(fm.try_edge_removal(t, T[e[0]], T[e[1]], wedge, cand, cand_old), 0, wedge, t);
       }
-      for (int f = 0; f < 4; ++f) consider(fm.try_23(t, f, cand, cand_old), 1, fm.tissue(t));
+      for (int f = 0; f < 4; ++f) consider(fm.try_23(t, f, cand, cand_old), 1, fm.tissue(t), -1);
       if (best_q < 0) continue;
-      if (best_kind == 2) {
+      if (best_wedge >= 0) {
         ++r.interface_flips;
-        r.volume_relabelled_mm3 += fm.volume(fm.tet(t));
+        r.volume_relabelled_mm3 += fm.volume(fm.tet(best_wedge));
       }
       fm.apply(best_old, best_new, best_tissue);
       ++applied;

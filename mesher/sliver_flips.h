@@ -11,7 +11,11 @@
 // Optionally (interface flips) a flat wedge whose two faces on one edge lie on the same
 // neighbouring tissue is first given to that tissue, which flips the interface's diagonal across
 // the wedge and makes the edge removable: the interface moves by the wedge's thickness and the
-// wedge's (near-zero) volume changes tissue; both are reported.
+// wedge's (near-zero) volume changes tissue; both are reported. The wedge is either the bad tet
+// itself (given to the tissue around its edge) or one other tet around an edge of the bad tet
+// (given to the bad tet's tissue; e.g. a sliver lying on an interface next to a flat wedge of the
+// other tissue). Only one wedge changes per flip; its other two faces must border its own tissue
+// and every other tet around its opposite edge be of that tissue (no tissue is pinched).
 // Deterministic (bad tets in order of quality, then index).
 #pragma once
 

@@ -21,21 +21,29 @@ TetShape shape(const TetMesh& mesh, const std::array<int, 4>& k) {
   return tet_shape(mesh.points[k[0]], mesh.points[k[1]], mesh.points[k[2]], mesh.points[k[3]]);
 }
 
-// How a vertex may move without changing any tissue's boundary.
-struct Mobility {
-  enum Kind : char { kFixed, kFree, kInPlane } kind = kFixed;
-  Eigen::Vector3d normal{0, 0, 0};  ///< kInPlane: unit normal of its plane
-};
-
 // Unit normals of surface faces at a vertex that are this close (radians) count as one plane: a
 // move by d within it leaves the surface within d * 1e-6 of where it was.
 constexpr double kPlanarRad = 1e-6;
 
+// How a vertex may move without changing any tissue's boundary (near-planar: its volume).
+struct Mobility {
+  enum Kind : char { kFixed, kFree, kInPlane } kind = kFixed;
+  Eigen::Vector3d normal{0, 0, 0};  ///< kInPlane: unit normal of the plane it moves in
+  double min_cos = 1.0;             ///< kInPlane: smallest |cos| between its face normals and the first
+  int tissue = 0;                   ///< kInPlane: the (non-outside) tissue of its region pair
+  /// kInPlane with faces not all in one plane (min_cos below cos(kPlanarRad)): moves in the plane
+  /// that keeps its tissue's volume (volume_plane), computed at each move from the star's nodes.
+  bool near_planar() const { return kind == kInPlane && min_cos < std::cos(kPlanarRad); }
+};
+
 // Free: on no boundary face and no interface face (its star lies in one tissue and closes around
 // it). In plane: every boundary or interface face at it lies on one region pair and one plane
-// (e.g. the cut chest-wall plane), so it may slide in that plane. Fixed: everything else
-// (junction and corner vertices, curved patches).
-std::vector<Mobility> mobility(const TetMesh& mesh) {
+// (e.g. the cut chest-wall plane), so it may slide in that plane; with `near_planar_rad` > 0 also
+// when their normals are within that angle of the first one's (then it moves in the plane that
+// keeps its tissue's volume; see volume_plane). Fixed: everything else (junction and corner
+// vertices, curved patches).
+std::vector<Mobility> mobility(const TetMesh& mesh, double near_planar_rad) {
+  const double min_cos = std::cos(std::max(kPlanarRad, near_planar_rad));
   struct Face {
     int tets = 0, tissue = 0, other = 0;  // tissue of the first tet and of the second (0 = none)
     std::array<int, 3> nodes{};
@@ -76,16 +84,37 @@ std::vector<Mobility> mobility(const TetMesh& mesh) {
         if (m.kind == Mobility::kFree) {
           m.kind = n.norm() > 0 ? Mobility::kInPlane : Mobility::kFixed;
           m.normal = n;
+          m.tissue = pair.second;
           seen = pair;
-        } else if (m.kind == Mobility::kInPlane &&
-                   (seen != pair || std::abs(std::abs(m.normal.dot(n)) - 1.0) > 0.5 * kPlanarRad * kPlanarRad ||
-                    n.norm() == 0)) {
-          m.kind = Mobility::kFixed;
+        } else if (m.kind == Mobility::kInPlane) {
+          m.min_cos = std::min(m.min_cos, std::abs(m.normal.dot(n)));
+          if (seen != pair || m.min_cos < min_cos || n.norm() == 0) m.kind = Mobility::kFixed;
         }
       }
     }
   }
   return out;
+}
+
+// Unit normal of the plane in which moves of v keep the volume of `tissue` (and so of every
+// region of v's star): the volume of each tet is linear in v's position, so the tissue's volume
+// gradient g, the sum over its tets at v of d(volume)/dv, is constant, and moves orthogonal to g
+// keep that volume exactly. In a closed star the other tissue's volume is the star's (fixed) minus
+// it; in an open one (boundary) the other region is the outside. Zero if g vanishes.
+Eigen::Vector3d volume_plane(const TetMesh& mesh, const std::vector<std::size_t>& star, int v, int tissue) {
+  // An even permutation of (0,1,2,3) that brings index i first, keeping the orientation.
+  static const int kFirst[4][4] = {{0, 1, 2, 3}, {1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}};
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  for (std::size_t t : star) {
+    if (mesh.tissue_ids[t] != tissue) continue;
+    const auto& k = mesh.tets[t];
+    const int i = static_cast<int>(std::find(k.begin(), k.end(), v) - k.begin());
+    const Eigen::Vector3d& x1 = mesh.points[static_cast<std::size_t>(k[kFirst[i][1]])];
+    const Eigen::Vector3d& x2 = mesh.points[static_cast<std::size_t>(k[kFirst[i][2]])];
+    const Eigen::Vector3d& x3 = mesh.points[static_cast<std::size_t>(k[kFirst[i][3]])];
+    g -= (x2 - x1).cross(x3 - x1) / 6.0;  // d/dx0 of (x1 - x0).((x2 - x0) x (x3 - x0)) / 6
+  }
+  return g.norm() > 0 ? Eigen::Vector3d(g.normalized()) : Eigen::Vector3d::Zero();
 }
 
 class Smoother {
@@ -132,8 +161,18 @@ class Smoother {
     return q;
   }
 
+  /// v's star (tet indices).
+  std::vector<std::size_t> star(int v) const {
+    return {star_.begin() + static_cast<std::ptrdiff_t>(star_start_[v]),
+            star_.begin() + static_cast<std::ptrdiff_t>(star_start_[v + 1])};
+  }
+
   /// Pattern search on v's position, in its plane when it has one; true when v moved.
-  bool improve(int v, const Mobility& mobility) {
+  bool improve(int v, Mobility mobility) {
+    if (mobility.near_planar()) {
+      mobility.normal = volume_plane(mesh_, star(v), v, mobility.tissue);
+      if (mobility.normal.isZero()) return false;
+    }
     Eigen::Vector3d& p = mesh_.points[static_cast<std::size_t>(v)];
     const Eigen::Vector3d start = p;
     const StarQuality q0 = star_quality(v);
@@ -206,11 +245,12 @@ class Smoother {
 
 }  // namespace
 
-SliverSmoothingResult smooth_slivers(TetMesh& mesh, double target_deg, int max_passes) {
+SliverSmoothingResult smooth_slivers(TetMesh& mesh, double target_deg, double near_planar_deg, int max_passes) {
   SliverSmoothingResult r;
-  const std::vector<Mobility> mobile = mobility(mesh);
+  std::vector<Mobility> mobile = mobility(mesh, near_planar_deg * M_PI / 180.0);
   auto movable = [&](int v) { return mobile[static_cast<std::size_t>(v)].kind != Mobility::kFixed; };
   Smoother smoother(mesh, target_deg);
+
   for (int pass = 0; pass < max_passes; ++pass) {
     std::vector<std::pair<double, std::size_t>> bad;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {

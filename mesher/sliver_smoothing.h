@@ -9,6 +9,12 @@
 //    plane (normals within 1e-6 rad; e.g. the phantom's cut chest-wall plane, where CGAL leaves
 //    rows of surface vertices 0.1-0.3 mm apart midway between two protected junction curves):
 //    they slide within that plane.
+// Optionally (near_planar_deg > 0) also near-planar vertices, whose faces lie on one region pair
+// with normals within near_planar_deg of the first one's (nearly flat patches of a curved
+// interface, e.g. a thin fat layer between skin and muscle whose tets span it): they move in the
+// plane orthogonal to their tissue's volume gradient (recomputed at each move), so every tissue's
+// volume stays as it was (to round-off), while the surface there moves off its place by at most
+// sin(2 near_planar_deg) times the move (the gradient is the area-weighted sum of the face normals).
 // For each tet below the target, in order of quality then index, each of its movable vertices is
 // moved by a deterministic pattern search (steps along the axes and along the normal of the face
 // opposite it in its star's worst tet, projected into its plane for a planar vertex, halved from
@@ -32,6 +38,8 @@ struct SliverSmoothingResult {
 
 /// Moves free and planar vertices of tets with a dihedral angle below `target_deg` (degrees), at most
 /// `max_passes` sweeps. Requires mesh.points.size() < kMaxFaceKeyNodes (mesher/face_key.h).
-SliverSmoothingResult smooth_slivers(TetMesh& mesh, double target_deg, int max_passes = 4);
+/// `near_planar_deg` (degrees; 0 = exactly flat patches only) as above.
+SliverSmoothingResult smooth_slivers(TetMesh& mesh, double target_deg, double near_planar_deg = 0.0,
+                                     int max_passes = 4);
 
 }  // namespace tissuemesh

@@ -239,3 +239,96 @@ TEST(SliverSmoothing, LeavesANodeWithAnInvertedTetAlone) {
   smooth_slivers(mesh, 15.0);
   EXPECT_EQ(mesh.points[static_cast<std::size_t>(inner)], pushed);
 }
+
+namespace {
+
+TetMesh oriented_mesh(std::vector<Eigen::Vector3d> points, std::vector<std::array<int, 4>> tets, std::vector<int> ids,
+                      std::vector<std::string> names) {
+  TetMesh m;
+  m.points = std::move(points);
+  m.tets = std::move(tets);
+  for (auto& t : m.tets)
+    if (signed_tet_volume(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]) < 0) std::swap(t[2], t[3]);
+  m.tissue_ids = std::move(ids);
+  m.tissue_names = std::move(names);
+  return m;
+}
+
+}  // namespace
+
+// The 2.1K phantom's flattest tet (9.04 degrees; nodes rounded to 0.1 um, shifted to the origin):
+// a fat sliver pqrs on a fat|fgt interface whose bad angles sit at edges of the interface, next to
+// a flat fgt wedge pqse whose two faces on edge pq both border fat (the sliver and tet pqre). The
+// wedge is not the sliver itself, so only giving the *neighbour* wedge to fat frees edge pq: its
+// ring is then all fat and the 3-2 flip replaces the three tets by two of 32-34 degrees.
+TEST(SliverFlips, InterfaceFlipGivesANeighbouringFlatWedgeToTheSliversTissue) {
+  const Eigen::Vector3d p(0, 0, 0), q(-0.1304, 1.6121, -0.0062), r(-0.7640, 0.7513, -0.1202),
+      s(0.7364, 0.8938, -0.0629), e(-1.0202, 0.8328, 0.6365);
+  const Eigen::Vector3d f = (s + e) - (p + q) / 2;  // fgt beyond the wedge's edge se
+  // 0 p, 1 q, 2 r, 3 s, 4 e, 5 f; fat = 1, fgt = 2.
+  TetMesh m = oriented_mesh({p, q, r, s, e, f}, {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 2, 4}, {0, 3, 4, 5}, {1, 3, 4, 5}},
+                            {1, 2, 1, 2, 2}, {"fat", "fgt"});
+  const auto& w = m.tets[1];
+  const double wedge_volume = signed_tet_volume(m.points[w[0]], m.points[w[1]], m.points[w[2]], m.points[w[3]]);
+  const QualityReport before = compute_quality(m);
+  ASSERT_LT(before.total.min_dihedral_deg, 10.0);
+  ASSERT_TRUE(check_conformity(m).conforming());
+
+  TetMesh inside_only = m;
+  flip_slivers(inside_only, 15.0, /*allow_interface_flips=*/false);
+  EXPECT_LT(compute_quality(inside_only).total.min_dihedral_deg, 10.0);  // no flip inside fat helps
+
+  const SliverFlipResult res = flip_slivers(m, 15.0, true);
+  EXPECT_EQ(res.interface_flips, 1u);
+  EXPECT_NEAR(res.volume_relabelled_mm3, wedge_volume, test::kRelativeRoundoff * wedge_volume);
+  EXPECT_TRUE(check_conformity(m).conforming());
+  for (const auto& t : m.tets)  // edge pq is gone
+    EXPECT_FALSE(std::count(t.begin(), t.end(), 0) && std::count(t.begin(), t.end(), 1));
+  const QualityReport after = compute_quality(m);
+  EXPECT_GE(after.total.min_dihedral_deg, 10.0);
+  EXPECT_NEAR(after.total.volume_mm3, before.total.volume_mm3, test::kRelativeRoundoff * before.total.volume_mm3);
+  EXPECT_NEAR(after.tissues[0].volume_mm3, before.tissues[0].volume_mm3 + wedge_volume,
+              test::kRelativeRoundoff * before.total.volume_mm3);  // fat gains exactly the wedge
+  EXPECT_NEAR(after.tissues[1].volume_mm3, before.tissues[1].volume_mm3 - wedge_volume,
+              test::kRelativeRoundoff * before.total.volume_mm3);
+  EXPECT_EQ(tissue_pieces(m), (std::map<int, int>{{1, 1}, {2, 1}}));
+}
+
+// The box's bottom is bent into a shallow bowl (z = 0.01 (x-4)^2 + 0.01 (y-4)^2: face normals
+// within about 3 degrees of vertical) and its middle bottom node pushed along it until its tets
+// are slivers. Exactly-planar smoothing cannot move it; near-planar smoothing slides it in the
+// plane that keeps the volume, so the box's volume is unchanged while its worst angle recovers.
+TEST(SliverSmoothing, SlidesANearlyFlatBoundaryNodeKeepingTheVolume) {
+  TetMesh mesh = test::box_mesh({0, 0, 0}, {8, 8, 4}, 4, 4, 2);
+  for (auto& x : mesh.points)
+    if (x.z() == 0.0) x.z() = 0.01 * ((x.x() - 4) * (x.x() - 4) + (x.y() - 4) * (x.y() - 4));
+  const int bottom = push_node(mesh, {4, 4, 0}, {1.8, 1.8, 0.01 * 2 * 1.8 * 1.8});  // along the bowl
+  ASSERT_EQ(check_conformity(mesh).inverted_tets, 0u);
+  const QualityReport before = compute_quality(mesh);
+  ASSERT_LT(before.total.min_dihedral_deg, 10.0);
+  const TetMesh original = mesh;
+  const auto faces = interface_faces(mesh);
+
+  TetMesh flat_only = mesh;
+  smooth_slivers(flat_only, 15.0, /*near_planar_deg=*/0.0);
+  EXPECT_EQ(flat_only.points[static_cast<std::size_t>(bottom)], mesh.points[static_cast<std::size_t>(bottom)]);
+
+  smooth_slivers(mesh, 15.0, /*near_planar_deg=*/5.0);
+  const Eigen::Vector3d moved = mesh.points[static_cast<std::size_t>(bottom)] - original.points[static_cast<std::size_t>(bottom)];
+  EXPECT_GT(moved.norm(), 0.1);
+  EXPECT_EQ(mesh.tets, original.tets);
+  EXPECT_EQ(interface_faces(mesh), faces);
+  // Bottom nodes (the pushed one and any neighbour that helps) slide along the bowl: the plane they
+  // move in is within 2 x 5 degrees of their faces, which are within a few degrees of level.
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (original.points[i].z() < 1.0) {
+      const Eigen::Vector3d d = mesh.points[i] - original.points[i];
+      EXPECT_LE(std::abs(d.z()), std::sin(10.0 * M_PI / 180.0) * d.norm()) << "bottom node " << i;
+    }
+  const QualityReport after = compute_quality(mesh);
+  EXPECT_NEAR(after.total.volume_mm3, before.total.volume_mm3, test::kRelativeRoundoff * before.total.volume_mm3);
+  EXPECT_EQ(check_conformity(mesh).inverted_tets, 0u);
+  std::cout << "[ smooth   ] bowl: min dihedral " << before.total.min_dihedral_deg << " -> "
+            << after.total.min_dihedral_deg << " deg, node slid " << moved.norm() << " mm\n";
+  EXPECT_GE(after.total.min_dihedral_deg, 10.0);
+}
