@@ -66,9 +66,12 @@ nlohmann::json side_json(const TissueQuality& q) {
           {"tets_radius_edge_above_2", q.tets_radius_edge_above_2}};
 }
 
+// "p|q" of regions p and q (tissue names, "outside").
+std::string interface_name(const TetMesh& mesh, int p, int q) { return region_name(mesh, p) + "|" + region_name(mesh, q); }
+
 // The triangle that sets the forced ratio: its interface and centroid (mm).
 std::string interface_name(const TriSurface& s, const TetMesh& mesh, int t) {
-  return region_name(mesh, s.labels[t][0]) + "|" + region_name(mesh, s.labels[t][1]);
+  return interface_name(mesh, s.labels[t][0], s.labels[t][1]);
 }
 
 Eigen::Vector3d centroid(const TriSurface& s, int t) {
@@ -179,7 +182,7 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   text << "\n  interface            area [mm^2]     TG [mm^2]   diff [%]\n";
   for (const auto& [pair, area] : a_mesh) {
     const double other = a_tg.count(pair) ? a_tg.at(pair) : 0.0;
-    const std::string name = region_name(mesh, pair.first) + "|" + region_name(mesh, pair.second);
+    const std::string name = interface_name(mesh, pair.first, pair.second);
     std::snprintf(line, sizeof line, "  %-18s %13.2f %13.2f %10.6f\n", name.c_str(), area, other, percent(other, area));
     text << line;
     interfaces.push_back({{"interface", name}, {"mesh_area_mm2", area}, {"tetgen_area_mm2", other},

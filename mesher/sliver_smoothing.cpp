@@ -247,10 +247,9 @@ class Smoother {
 
 SliverSmoothingResult smooth_slivers(TetMesh& mesh, double target_deg, double near_planar_deg, int max_passes) {
   SliverSmoothingResult r;
-  std::vector<Mobility> mobile = mobility(mesh, near_planar_deg * M_PI / 180.0);
+  const std::vector<Mobility> mobile = mobility(mesh, near_planar_deg * M_PI / 180.0);
   auto movable = [&](int v) { return mobile[static_cast<std::size_t>(v)].kind != Mobility::kFixed; };
   Smoother smoother(mesh, target_deg);
-
   for (int pass = 0; pass < max_passes; ++pass) {
     std::vector<std::pair<double, std::size_t>> bad;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
