@@ -9,6 +9,7 @@
 #include "mesher/forced_radius_edge.h"
 #include "mesher/mesh_interfaces.h"
 #include "mesher/mesh_quality.h"
+#include "mesher/node_spacing.h"
 #include "mesher/tetgen_mesher.h"
 #include "solver_check/tissue_motion.h"
 
@@ -117,12 +118,20 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   if (!known) throw InputError("--target: '" + target + "' is not a tissue of the mesh");
 
   TriSurface surface;
+  std::vector<double> sizes;  // TetGen's largest circumradius per surface point (mm), empty = none
   {
     auto stage = progress.stage("interfaces of the mesh");
-    surface = interface_surface(mesh);
+    std::vector<int> node_of_point;
+    surface = interface_surface(mesh, &node_of_point);
+    if (config.mesh.tetgen.size_from_mesh) {
+      const std::vector<double> radius = largest_incident_circumradius_mm(mesh);
+      for (int node : node_of_point) sizes.push_back(radius[node]);
+    }
     stage.note(std::to_string(surface.triangles.size()) + " triangles");
   }
-  const TetgenResult tg = tetgen_mesh(surface, config.mesh.tetgen, progress);
+  const TetgenResult tg = tetgen_mesh(surface, config.mesh.tetgen, progress, sizes);
+  const std::string sizing = sizes.empty() ? "per-tissue volume bounds"
+                                           : "sizes from MESH: at each surface node its largest tet circumradius";
   {
     auto stage = progress.stage("write mesh_tetgen.vtu");
     write_vtu(tg.mesh, out.stage("mesh_tetgen.vtu").string());
@@ -154,7 +163,7 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   std::ostringstream text;
   char line[256];
   text << "\nTetGen cross-check (TetGen " << tg.switches << " on the " << surface.triangles.size()
-       << " boundary and interface triangles of MESH):\n";
+       << " boundary and interface triangles of MESH; " << sizing << "):\n";
   std::snprintf(line, sizeof line, "  %-10s %10s %10s %14s %14s %8s %9s %9s\n", "tissue", "tets", "tets TG",
                 "volume [mm^3]", "TG [mm^3]", "diff [%]", "min [deg]", "TG [deg]");
   text << line;
@@ -207,6 +216,7 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   record["config"] = {{"source", config.source}, {"effective_yaml", config.to_yaml()}};
   record["tetgen"] = {{"version", "1.5 (Debian libtet1.5)"},
                       {"switches", tg.switches},
+                      {"sizing", sizing},
                       {"steiner_points", tg.steiner_points},
                       {"input_triangles", surface.triangles.size()},
                       {"radius_edge_ratio_bound", bound},

@@ -19,7 +19,7 @@ struct FaceUse {
 
 }  // namespace
 
-TriSurface interface_surface(const TetMesh& mesh) {
+TriSurface interface_surface(const TetMesh& mesh, std::vector<int>* node_of_point) {
   std::vector<FaceUse> uses;
   uses.reserve(4 * mesh.tets.size());
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
@@ -62,10 +62,12 @@ TriSurface interface_surface(const TetMesh& mesh) {
   std::vector<int> index(mesh.points.size(), -1);
   for (const auto& t : tris)
     for (int v : t) index[v] = 0;
+  if (node_of_point) node_of_point->clear();
   for (std::size_t v = 0; v < mesh.points.size(); ++v)
     if (index[v] == 0) {
       index[v] = static_cast<int>(s.points.size());
       s.points.push_back(mesh.points[v]);
+      if (node_of_point) node_of_point->push_back(static_cast<int>(v));
     }
   for (const auto& t : tris) s.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
 

@@ -11,9 +11,12 @@
 #include "core/tet_mesh.h"
 #include "core/tri_surface.h"
 
+#include <vector>
+
 namespace tissuemesh {
 
-/// Throws InputError when a face is shared by more than two tets (not a conforming mesh).
-TriSurface interface_surface(const TetMesh& mesh);
+/// Throws InputError when a face is shared by more than two tets (not a conforming mesh). When
+/// `node_of_point` is given, it receives the mesh node of every surface point.
+TriSurface interface_surface(const TetMesh& mesh, std::vector<int>* node_of_point = nullptr);
 
 }  // namespace tissuemesh

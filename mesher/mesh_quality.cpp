@@ -156,7 +156,8 @@ TetShape tet_shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
   const double shortest = std::sqrt(std::min({ab.squaredNorm(), ac.squaredNorm(), ad.squaredNorm(),
                                               (c - b).squaredNorm(), (d - b).squaredNorm(),
                                               (d - c).squaredNorm()}));
-  s.radius_edge_ratio = det != 0.0 && shortest > 0.0 ? m.norm() / (2.0 * std::abs(det) * shortest)
+  s.circumradius_mm = det != 0.0 ? m.norm() / (2.0 * std::abs(det)) : std::numeric_limits<double>::infinity();
+  s.radius_edge_ratio = det != 0.0 && shortest > 0.0 ? s.circumradius_mm / shortest
                                                      : std::numeric_limits<double>::infinity();
 
   // SICN = 3 / (|E W^-1|_F |W E^-1|_F) with E = [ab ac ad] and W the same for the unit regular

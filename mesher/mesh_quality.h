@@ -52,6 +52,8 @@ struct TetShape {
   /// collapsed tet. Blind to slivers (four nearly coplanar nodes on a circle keep it near
   /// 1/sqrt(2)), hence the dihedral angles next to it. Independent of orientation.
   double radius_edge_ratio;
+  /// Circumradius, mm (the size CGAL's and TetGen's cell criteria bound); +infinity when flat.
+  double circumradius_mm;
   /// Signed volume, mm^3: positive for a positively oriented tet (see TetMesh), negative inverted.
   double volume_mm3;
 };

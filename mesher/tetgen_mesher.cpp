@@ -128,7 +128,8 @@ std::string tetgen_failure(int code) {
 
 }  // namespace
 
-TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, Progress& progress) {
+TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, Progress& progress,
+                         const std::vector<double>& point_radius_mm) {
   if (!(params.radius_edge_ratio > 1.0))
     throw InputError("tetgen.radius_edge_ratio must be > 1 (TetGen's -q bound), got " +
                      std::to_string(params.radius_edge_ratio));
@@ -140,6 +141,15 @@ TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, 
     for (const std::string& t : surface.tissue_names) known = known || t == name;
     if (!known) throw InputError("tetgen.max_volume_mm3 names unknown tissue '" + name + "'");
   }
+  if (!point_radius_mm.empty()) {
+    if (point_radius_mm.size() != surface.points.size())
+      throw InputError("TetGen sizes: " + std::to_string(point_radius_mm.size()) + " values for " +
+                       std::to_string(surface.points.size()) + " surface points");
+    for (std::size_t v = 0; v < point_radius_mm.size(); ++v)
+      if (!(point_radius_mm[v] >= 0.0 && std::isfinite(point_radius_mm[v])))
+        throw InputError("TetGen sizes: the circumradius bound at surface point " + std::to_string(v) +
+                         " is not a finite value >= 0 mm");
+  }
   surface.validate("surface for TetGen");
   auto stage = progress.stage("TetGen volume mesh");
 
@@ -149,6 +159,11 @@ TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, 
   in.pointlist = new REAL[3 * surface.points.size()];
   for (std::size_t v = 0; v < surface.points.size(); ++v)
     for (int i = 0; i < 3; ++i) in.pointlist[3 * v + i] = surface.points[v][i];
+  if (!point_radius_mm.empty()) {
+    in.numberofpointmtrs = 1;
+    in.pointmtrlist = new REAL[surface.points.size()];
+    std::copy(point_radius_mm.begin(), point_radius_mm.end(), in.pointmtrlist);
+  }
   in.numberoffacets = static_cast<int>(surface.triangles.size());
   in.facetlist = new tetgenio::facet[surface.triangles.size()];
   in.facetmarkerlist = new int[surface.triangles.size()];
@@ -169,9 +184,10 @@ TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, 
     double mean_edge = 0.0;
     const std::vector<Vector3d> seeds = seeds_inside(surface, id, mean_edge);
     const auto it = params.max_volume_mm3.find(surface.tissue_names[id - 1]);
-    // The regular tetrahedron of edge e has volume e^3 / (6 sqrt 2).
+    // The regular tetrahedron of edge e has volume e^3 / (6 sqrt 2); TetGen reads a bound <= 0 as none.
     const double max_volume = it != params.max_volume_mm3.end() ? it->second
-                                                                 : std::pow(mean_edge, 3) / (6.0 * std::sqrt(2.0));
+                              : point_radius_mm.empty()           ? std::pow(mean_edge, 3) / (6.0 * std::sqrt(2.0))
+                                                                : -1.0;
     for (const Vector3d& p : seeds) regions.push_back({p[0], p[1], p[2], static_cast<double>(id), max_volume});
   }
   in.numberofregions = static_cast<int>(regions.size());
@@ -183,7 +199,7 @@ TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, 
   {
     char q[64];
     std::snprintf(q, sizeof q, "q%.6g/%.6g", params.radius_edge_ratio, params.min_dihedral_deg);
-    result.switches = std::string("pzQAaY") + q;
+    result.switches = std::string(point_radius_mm.empty() ? "pzQAaY" : "pzQAamY") + q;
   }
   std::vector<char> switches(result.switches.begin(), result.switches.end());
   switches.push_back('\0');

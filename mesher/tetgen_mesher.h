@@ -6,7 +6,10 @@
 // every triangle a facet (its patch pair p|q as the facet marker 1000 p + q), one region per
 // tissue with a seed point inside it, its tissue id as the region attribute and its maximum tet
 // volume. Switches, built from the typed parameters only: p (PLC), q<ratio>/<dihedral> (quality),
-// A (region attributes), a (per-region volume bounds), Y (keep every input facet as it is: the
+// A (region attributes), a (per-region volume bounds), m (when a largest circumradius is given per
+// surface point: a tet is split while its circumradius exceeds the value at any of its vertices,
+// and points TetGen adds get the value interpolated from the tet they split), Y (keep every input
+// facet as it is: the
 // boundary and every interface are exactly the input triangles, so the tet mesh and the surface
 // agree face for face and enclose the same volumes; without Y, TetGen flips and splits nearly
 // coplanar boundary triangles and moves the surface by ~1e-6 of the volume), z (0-based),
@@ -30,6 +33,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 namespace tissuemesh {
 
@@ -39,8 +43,12 @@ struct TetgenResult {
   std::size_t steiner_points = 0;  ///< nodes TetGen added (mesh nodes - surface vertices used)
 };
 
-/// Meshes `surface` (see the header comment). Throws InputError for bad parameters (naming the
-/// key) and MeshingError when TetGen fails.
-TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, Progress& progress);
+/// Meshes `surface` (see the header comment). `point_radius_mm`, when not empty, is the largest
+/// tet circumradius in mm at every surface point (switch m; 0 = no bound at that point); tissues
+/// not named in params.max_volume_mm3 then get no volume bound, so these sizes alone set the
+/// resolution. Throws InputError for bad parameters (naming the key) and MeshingError when TetGen
+/// fails.
+TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, Progress& progress,
+                         const std::vector<double>& point_radius_mm = {});
 
 }  // namespace tissuemesh

@@ -15,8 +15,13 @@ struct TetgenParams {
   double radius_edge_ratio = 2.0;
   /// Smallest dihedral angle TetGen aims for (-q second value, degrees; 0 = TetGen's default).
   double min_dihedral_deg = 0.0;
-  /// Maximum tet volume per tissue name, mm^3; tissues not listed get the volume of the regular
-  /// tet whose edge is the mean edge length of the tissue's boundary triangles.
+  /// `check --tetgen`: TetGen's largest circumradius at every surface node is the largest the
+  /// checked mesh has there (mesher/node_spacing.h), so both meshes have the same resolution and
+  /// the comparison measures the mesher, not the mesh size. false: per-tissue volume bounds only.
+  bool size_from_mesh = true;
+  /// Maximum tet volume per tissue name, mm^3. Tissues not listed get no bound when sizes come
+  /// from the mesh, else the volume of the regular tet whose edge is the mean edge length of the
+  /// tissue's boundary triangles.
   std::map<std::string, double> max_volume_mm3;
 
   /// Reads the `tetgen:` map (unknown keys are errors; the backend range-checks the values and

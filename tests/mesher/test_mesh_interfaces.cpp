@@ -5,6 +5,7 @@
 #include "mesher/conformity.h"
 #include "mesher/mesh_interfaces.h"
 #include "mesher/mesh_quality.h"
+#include "mesher/node_spacing.h"
 #include "mesher/surface_checks.h"
 #include "mesher/tetgen_mesher.h"
 #include "support/tolerances.h"
@@ -102,6 +103,36 @@ TEST(MeshInterfaces, TetgenSeedsEveryPieceOfATissue) {
   EXPECT_NEAR(volume[1], 2.0, kRelativeRoundoff);
   EXPECT_NEAR(volume[2], 2.0, kRelativeRoundoff);
   EXPECT_TRUE(check_conformity(r.mesh).conforming());
+}
+
+TEST(MeshInterfaces, NodesOfTheSurfacePointsAndTheirLargestCircumradius) {
+  const TetMesh m = cubes({1, 2, 3, 3});
+  std::vector<int> node;
+  const TriSurface s = interface_surface(m, &node);
+  ASSERT_EQ(node.size(), s.points.size());
+  for (std::size_t v = 0; v < s.points.size(); ++v) EXPECT_EQ(s.points[v], m.points[node[v]]);
+  // The centre node (1, 1, 0.5) does not exist; every one of the 18 nodes is on the boundary.
+  EXPECT_EQ(node.size(), 18u);
+  // Every Kuhn tet of a unit cube has the cube's body diagonal as an edge and a right angle
+  // opposite it in every face through it, so its circumsphere is the cube's: radius sqrt(3) / 2.
+  const std::vector<double> radius = largest_incident_circumradius_mm(m);
+  ASSERT_EQ(radius.size(), m.points.size());
+  for (double r : radius) EXPECT_NEAR(r, std::sqrt(3.0) / 2.0, kRelativeRoundoff);
+  // A right-corner tet of legs 4 at node 0 (its circumsphere is that of the 4 x 4 x 4 cube: radius
+  // 2 sqrt 3) raises node 0 only; nodes in nothing but a flat tet (four points on a line) get 0.
+  TetMesh grown = m;
+  const int n = static_cast<int>(m.points.size());
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(-4, 0, 0), Eigen::Vector3d(0, -4, 0), Eigen::Vector3d(0, 0, -4)})
+    grown.points.push_back(p);
+  for (int k = 0; k < 4; ++k) grown.points.emplace_back(7.0 + k, 7.0 + k, 7.0 + k);
+  grown.tets.push_back({0, n, n + 1, n + 2});
+  grown.tets.push_back({n + 3, n + 4, n + 5, n + 6});
+  grown.tissue_ids.insert(grown.tissue_ids.end(), {1, 1});
+  const std::vector<double> r = largest_incident_circumradius_mm(grown);
+  EXPECT_NEAR(r[0], 2.0 * std::sqrt(3.0), kRelativeRoundoff);
+  EXPECT_NEAR(r[n], 2.0 * std::sqrt(3.0), kRelativeRoundoff);
+  EXPECT_NEAR(r[1], std::sqrt(3.0) / 2.0, kRelativeRoundoff);
+  for (int k = 3; k < 7; ++k) EXPECT_EQ(r[n + k], 0.0);
 }
 
 TEST(MeshInterfaces, RefusesAFaceInThreeTets) {

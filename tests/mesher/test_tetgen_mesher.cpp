@@ -94,6 +94,46 @@ TEST(TetgenMesher, VolumeBoundRefinesAndRunsAreIdentical) {
   EXPECT_EQ(a.mesh.tissue_ids, b.mesh.tissue_ids);
 }
 
+TEST(TetgenMesher, PointSizesGradeTheMesh) {
+  // Largest circumradius 0.5 mm on one half of the spheres' surface points and 2 mm on the other:
+  // TetGen splits a tet while its circumradius exceeds the value at one of its vertices, and
+  // interpolates the values at the points it adds, so the inside follows the halves.
+  const TriSurface s = remeshed(nested_spheres(), 2, 300).surface;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto& p : s.points) centre += p / static_cast<double>(s.points.size());
+  std::vector<double> sizes;
+  for (const auto& p : s.points) sizes.push_back(p.x() < centre.x() ? 0.5 : 2.0);
+  Progress progress;
+  const TetgenResult r = tetgen_mesh(s, TetgenParams{}, progress, sizes);
+  EXPECT_EQ(r.switches, "pzQAamYq2/0");
+  EXPECT_TRUE(check_conformity(r.mesh).conforming());
+  expect_surface_volumes(r.mesh, s);
+  // Median circumradius of the tets well inside each half (3 mm from the dividing plane).
+  std::vector<double> fine, coarse;
+  for (const auto& k : r.mesh.tets) {
+    const Eigen::Vector3d a = r.mesh.points[k[0]], b = r.mesh.points[k[1]] - a, c = r.mesh.points[k[2]] - a,
+                          d = r.mesh.points[k[3]] - a;
+    const Eigen::Vector3d centre_offset =
+        (b.squaredNorm() * c.cross(d) + c.squaredNorm() * d.cross(b) + d.squaredNorm() * b.cross(c)) /
+        (2.0 * b.dot(c.cross(d)));
+    const double x = a.x() + (b.x() + c.x() + d.x()) / 4.0 - centre.x();
+    if (x < -3.0) fine.push_back(centre_offset.norm());
+    if (x > 3.0) coarse.push_back(centre_offset.norm());
+  }
+  ASSERT_FALSE(fine.empty());
+  ASSERT_FALSE(coarse.empty());
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  EXPECT_LE(median(fine), 0.5);
+  EXPECT_LT(median(fine), 0.5 * median(coarse));
+  sizes.pop_back();
+  EXPECT_THROW(tetgen_mesh(s, TetgenParams{}, progress, sizes), InputError);
+  sizes.push_back(-1.0);
+  EXPECT_THROW(tetgen_mesh(s, TetgenParams{}, progress, sizes), InputError);
+}
+
 TEST(TetgenMesher, BadParametersNameTheKey) {
   const TriSurface s = remeshed(nested_spheres(), 2, 300).surface;
   auto message = [&](const TetgenParams& p) {
