@@ -238,6 +238,22 @@ TEST_F(Check, GmshComputesTheSameGammaAndSicnAsWeDoOnEveryTet) {
   EXPECT_EQ(records, mesh.tets.size());
 }
 
+TEST_F(Check, TetgenSizedByVolumeBoundsWhenAsked) {
+  // tetgen.size_from_mesh: false gives TetGen the per-tissue volume bounds of the regular tet of
+  // each tissue's mean boundary edge instead of the block mesh's sizes: no -m, and a different mesh.
+  std::ofstream(dir / "bounds.yaml") << read_file(dir / "block.yaml") << "tetgen: {size_from_mesh: false}\n";
+  const auto bounds = run_cli("check block.vtu -c bounds.yaml -o by_bounds --tetgen", dir);
+  ASSERT_EQ(bounds.exit_code, 0) << bounds.err;
+  const auto sized = run_cli("check block.vtu -c block.yaml -o by_mesh --tetgen", dir);
+  ASSERT_EQ(sized.exit_code, 0) << sized.err;
+  const auto a = nlohmann::json::parse(read_file(dir / "by_bounds/check.json"));
+  const auto b = nlohmann::json::parse(read_file(dir / "by_mesh/check.json"));
+  EXPECT_EQ(a["tetgen"]["switches"], "pzQAaYq2/0");
+  EXPECT_EQ(a["tetgen"]["sizing"], "per-tissue volume bounds");
+  EXPECT_EQ(b["tetgen"]["switches"], "pzQAamYq2/0");
+  EXPECT_NE(a["tissues"][3]["tetgen"]["tets"], b["tissues"][3]["tetgen"]["tets"]);
+}
+
 TEST_F(Check, TetgenWithAnUnknownTargetIsBadInput) {
   const auto r = run_cli("check block.vtu -c block.yaml -o out --tetgen --target liver", dir);
   EXPECT_EQ(r.exit_code, 2) << r.err;
