@@ -2,6 +2,7 @@
 // closedness, shared interfaces, junction preservation, distance to the input, determinism.
 #include "core/errors.h"
 #include "mesher/approach_field.h"
+#include "mesher/graded_size_cap.h"
 #include "mesher/mesh_config.h"
 #include "mesher/surface_checks.h"
 #include "mesher/surface_distance.h"
@@ -12,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 using namespace tissuemesh;
@@ -190,4 +192,19 @@ TEST(ApproachParams, ConfigErrorsNameTheKey) {
   EXPECT_NE(message("pipeline: surface\nsurface: {target_vertices: 100}\napproach: {ratio: 0.5}\n").find("approach.ratio"),
             std::string::npos);
   EXPECT_NE(message("pipeline: surface\nsurface: {target_edge_mm: -1}\n").find("surface.target_edge_mm"), std::string::npos);
+}
+
+TEST(GradedSizeCap, IsTheFactorTimesTheEdgeAtItsMidpointAndGrowsByTheGradation) {
+  GradedSizeCap cap(2.0, 0.5);
+  const Eigen::Vector3d m(1.0, 2.0, 3.0), far(30.0, 2.0, 3.0);
+  EXPECT_TRUE(std::isinf(cap(m)));  // no edge yet
+  cap.add(m, 0.7, 10.0);
+  EXPECT_NEAR(cap(m), 1.4, kRelativeRoundoff);
+  EXPECT_NEAR(cap(m + Eigen::Vector3d(0.0, 4.0, 0.0)), 1.4 + 0.5 * 4.0, kRelativeRoundoff);
+  EXPECT_TRUE(std::isinf(cap(far)));  // beyond (10 - 1.4) / 0.5 mm the cap could not matter
+  cap.add(far, 0.5, 10.0);            // the minimum over edges
+  EXPECT_NEAR(cap(far + Eigen::Vector3d(0.0, 0.0, 2.0)), 1.0 + 0.5 * 2.0, kRelativeRoundoff);
+  EXPECT_NEAR(cap(m), 1.4, kRelativeRoundoff);
+  cap.add(m, 6.0, 10.0);  // factor * length above `largest`: not entered
+  EXPECT_EQ(cap.size(), 2u);
 }
