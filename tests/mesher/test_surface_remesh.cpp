@@ -8,6 +8,7 @@
 #include "mesher/surface_distance.h"
 #include "mesher/surface_projection.h"
 #include "mesher/surface_remesh.h"
+#include "mesher/triangle_geometry.h"
 #include "support/surface_images.h"
 #include "support/tolerances.h"
 
@@ -192,6 +193,29 @@ TEST(ApproachParams, ConfigErrorsNameTheKey) {
   EXPECT_NE(message("pipeline: surface\nsurface: {target_vertices: 100}\napproach: {ratio: 0.5}\n").find("approach.ratio"),
             std::string::npos);
   EXPECT_NE(message("pipeline: surface\nsurface: {target_edge_mm: -1}\n").find("surface.target_edge_mm"), std::string::npos);
+}
+
+TEST(SurfaceRemesh, TrianglesAroundASmallJunctionLoopAreGradedNotSlivers) {
+  // The island's junction loops are ~2 mm around, its corners fixed, the edges at these budgets
+  // 4.5-6.5 mm: without the size cap around stuck junction edges (mesher/graded_size_cap.h;
+  // mutation check) the triangles touching the loops reach 11.2 degrees.
+  const LabelImage img = island_under_layer();
+  const TriSurface input = extract(img, 3).surface;
+  const SurfaceProjection on_input(input);
+  const Eigen::Vector3d contact = img.origin + Eigen::Vector3d(14.5, 14.5, 12.5);  // top of the island
+  for (int budget : {100, 120, 150}) {
+    const RemeshResult r = remesh(input, on_input, budget, img.spacing.norm());
+    EXPECT_EQ(r.surface.points.size(), static_cast<std::size_t>(budget));
+    EXPECT_TRUE(r.checks.valid()) << "budget " << budget;
+    double smallest = 180.0;
+    for (const auto& t : r.surface.triangles) {
+      bool near = false;
+      for (int v : t) near = near || (r.surface.points[v] - contact).norm() < 2.0;
+      const auto& p = r.surface.points;
+      if (near) smallest = std::min(smallest, min_angle(p[t[0]], p[t[1]], p[t[2]]) * 180.0 / M_PI);
+    }
+    EXPECT_GT(smallest, kGradedLoopMinAngleDeg) << "budget " << budget;
+  }
 }
 
 TEST(GradedSizeCap, IsTheFactorTimesTheEdgeAtItsMidpointAndGrowsByTheGradation) {
