@@ -25,6 +25,11 @@ constexpr double kFlipFlatCos = 0.906;
 constexpr double kGridDrift = 1.5;
 /// The approximation bound is at least this fraction of the edge length L.
 constexpr double kDeviationPerEdge = 0.25;
+/// Size cap around stuck edges (mesher/graded_size_cap.h): 1.93 gives the isosceles triangle on a
+/// stuck edge an apex angle of 30 degrees (the P30 threshold); the size then grows by 0.4 mm per
+/// mm, so neighbouring triangles differ in size by a factor 1.4 at most.
+constexpr double kCapFactor = 1.93;
+constexpr double kCapGradation = 0.4;
 
 Eigen::AlignedBox3d box_of(const TrianglePoints& p) {
   Eigen::AlignedBox3d b(p[0]);
@@ -36,7 +41,10 @@ Eigen::AlignedBox3d box_of(const TrianglePoints& p) {
 }  // namespace
 
 RemeshComplex::RemeshComplex(const TriSurface& in, const SurfaceProjection& projection, const RemeshOptions& options)
-    : proj_(projection), size_(options.relative_size), max_deviation_(options.max_deviation_mm) {
+    : proj_(projection),
+      size_(options.relative_size),
+      cap_(kCapFactor, kCapGradation),
+      max_deviation_(options.max_deviation_mm) {
   x_ = in.points;
   reference_ = in.points;
   represents_.resize(x_.size());
@@ -99,7 +107,10 @@ std::size_t RemeshComplex::corners() const {
   return n;
 }
 
-double RemeshComplex::s(const Vector3d& p) const { return size_ ? size_(p) : 1.0; }
+double RemeshComplex::s(const Vector3d& p) const {
+  const double s0 = size_ ? size_(p) : 1.0;
+  return cap_.size() == 0 ? s0 : std::min(s0, cap_(p) / L);
+}
 
 double RemeshComplex::weighted_area() const {
   double sum = 0.0;

@@ -28,11 +28,18 @@
 // from the triangles around it, or when a changed triangle would leave its patch by more than that
 // bound or face away from it (a triangle bridging the two sides of a thin sheet); split midpoints
 // and relaxed points that would project onto the far side of a thin sheet are refused too.
+// Size near stuck edges: grade_stuck_edges() enters the edges between two junction vertices (curve
+// or corner) that stayed far shorter than h into a GradedSizeCap (mesher/graded_size_cap.h), and
+// h(x) = min(L s(x), cap(x)) from then on, so the triangles next to them are sized like them
+// instead of becoming slivers. Edges with a surface vertex are not entered: that vertex can still
+// move, and a short edge held by a thin sheet, once entered, refines the sheet into more short
+// edges (measured on the 2.1K phantom: down to 0.02 mm edges and a 0.6 degree minimum angle).
 // Deterministic: every sweep visits triangles and vertices in index order. Not parallel.
 #pragma once
 
 #include "core/tri_surface.h"
 #include "mesher/surface_projection.h"
+#include "mesher/graded_size_cap.h"
 #include "mesher/surface_remesh.h"
 #include "mesher/triangle_grid.h"
 #include "mesher/triangle_intersection.h"
@@ -73,6 +80,12 @@ class RemeshComplex {
   /// (header comment); returns the number of vertices moved.
   std::size_t smooth_poor(double min_angle_rad);
 
+  /// Enters every edge between two junction vertices that is shorter than `below` times h at its
+  /// midpoint into the size cap (header comment); edges entered before stay. Call once the
+  /// collapses have converged, so that the short edges left are the ones the corners and guards
+  /// keep. Returns the number entered.
+  std::size_t grade_stuck_edges(double below);
+
   /// Collapses the relatively shortest or splits the relatively longest edges until the vertex
   /// count is `target`; false when it cannot get there (every candidate refused, even with the
   /// approximation bound loosened by 1.5x per stuck round).
@@ -90,6 +103,7 @@ class RemeshComplex {
   /// that is larger (a coarse budget cannot follow the surface to within a voxel); grown by
   /// match_count when the budget cannot be met otherwise.
   double deviation() const;
+  /// h(p) / L: the caller's relative size, lowered by the size cap.
   double s(const Vector3d& p) const;
   double h(const Vector3d& p) const { return L * s(p); }
   /// Length of edge (a, b) relative to h at its midpoint.
@@ -159,6 +173,7 @@ class RemeshComplex {
 
   const SurfaceProjection& proj_;
   std::function<double(const Vector3d&)> size_;
+  GradedSizeCap cap_;
   double max_deviation_ = 0.0;
   double slack_ = 1.0;  ///< deviation() multiplier, raised by match_count when stuck
   std::vector<Vector3d> reference_;             ///< the input vertices

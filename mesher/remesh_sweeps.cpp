@@ -120,6 +120,21 @@ std::size_t RemeshComplex::smooth_poor(double min_angle_rad) {
   return moved;
 }
 
+std::size_t RemeshComplex::grade_stuck_edges(double below) {
+  std::size_t n = 0;
+  for (const auto& e : edges()) {
+    if (kind_[e[0]] == Kind::Surface || kind_[e[1]] == Kind::Surface) continue;
+    const Vector3d m = 0.5 * (x_[e[0]] + x_[e[1]]);
+    const double length = (x_[e[0]] - x_[e[1]]).norm();
+    if (length < below * h(m)) {
+      // Reach up to twice L: the budget rescaling may still grow L.
+      cap_.add(m, length, 2.0 * L);
+      ++n;
+    }
+  }
+  return n;
+}
+
 bool RemeshComplex::match_count(std::size_t target) {
   for (int round = 0; round < 20 && alive_vertices_ != target; ++round) {
     std::vector<std::pair<double, std::array<int, 2>>> ranked;

@@ -14,6 +14,11 @@ namespace {
 constexpr double kPoorAngleDeg = 30.0;
 /// Angle-improving smoothing passes (measured on the phantom: the third moves few vertices).
 constexpr int kAngleSmoothingPasses = 3;
+/// Edges shorter than this times h after a round's collapses have converged are stuck (kept by a
+/// corner or a guard), and the size is capped around them (mesher/graded_size_cap.h).
+/// (0.5: below the collapse threshold 4/5 with margin; 0.65 gave the same phantom meshes.) From
+/// the second round on: the first coarsens the fine extraction and leaves nothing converged.
+constexpr double kStuckBelow = 0.5;
 
 }  // namespace
 
@@ -38,6 +43,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     // The first rounds coarsen a fine extraction by a large factor: collapse until stable.
     for (int k = 0; k < 20; ++k)
       if (m.collapse_short() == 0) break;
+    if (it >= 1) m.grade_stuck_edges(kStuckBelow);
     m.split_long();
     m.flip_all();
     m.relax();

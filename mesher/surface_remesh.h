@@ -7,6 +7,8 @@
 // measured count after the first rounds, and a final pass collapses the shortest or splits the
 // longest edges (relative to h) until the count is exactly the budget. Polish: flips, relaxation,
 // then angle-improving smoothing of the vertices of triangles with an angle under 30 degrees.
+// From the second round on, h is capped near junction edges that stay far shorter than h (fixed
+// corners close together, guards): mesher/graded_size_cap.h.
 // Validity: no operation is applied that would make two triangles intersect (an exact guard,
 // mesher/remesh_complex.h), so a valid input gives an intersection-free result at any budget; the
 // result is checked again (mesher/surface_checks.h) and the checks returned, the caller decides.

@@ -2,16 +2,19 @@
 // closedness, shared interfaces, junction preservation, distance to the input, determinism.
 #include "core/errors.h"
 #include "mesher/approach_field.h"
+#include "mesher/graded_size_cap.h"
 #include "mesher/mesh_config.h"
 #include "mesher/surface_checks.h"
 #include "mesher/surface_distance.h"
 #include "mesher/surface_projection.h"
 #include "mesher/surface_remesh.h"
+#include "mesher/triangle_geometry.h"
 #include "support/surface_images.h"
 #include "support/tolerances.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 using namespace tissuemesh;
@@ -190,4 +193,42 @@ TEST(ApproachParams, ConfigErrorsNameTheKey) {
   EXPECT_NE(message("pipeline: surface\nsurface: {target_vertices: 100}\napproach: {ratio: 0.5}\n").find("approach.ratio"),
             std::string::npos);
   EXPECT_NE(message("pipeline: surface\nsurface: {target_edge_mm: -1}\n").find("surface.target_edge_mm"), std::string::npos);
+}
+
+TEST(SurfaceRemesh, TrianglesAroundASmallJunctionLoopAreGradedNotSlivers) {
+  // The island's junction loops are ~2 mm around, its corners fixed, the edges at these budgets
+  // 4.5-6.5 mm: without the size cap around stuck junction edges (mesher/graded_size_cap.h;
+  // mutation check) the triangles touching the loops reach 11.2 degrees.
+  const LabelImage img = island_under_layer();
+  const TriSurface input = extract(img, 3).surface;
+  const SurfaceProjection on_input(input);
+  const Eigen::Vector3d contact = img.origin + Eigen::Vector3d(14.5, 14.5, 12.5);  // top of the island
+  for (int budget : {100, 120, 150}) {
+    const RemeshResult r = remesh(input, on_input, budget, img.spacing.norm());
+    EXPECT_EQ(r.surface.points.size(), static_cast<std::size_t>(budget));
+    EXPECT_TRUE(r.checks.valid()) << "budget " << budget;
+    double smallest = 180.0;
+    for (const auto& t : r.surface.triangles) {
+      bool near = false;
+      for (int v : t) near = near || (r.surface.points[v] - contact).norm() < 2.0;
+      const auto& p = r.surface.points;
+      if (near) smallest = std::min(smallest, min_angle(p[t[0]], p[t[1]], p[t[2]]) * 180.0 / M_PI);
+    }
+    EXPECT_GT(smallest, kGradedLoopMinAngleDeg) << "budget " << budget;
+  }
+}
+
+TEST(GradedSizeCap, IsTheFactorTimesTheEdgeAtItsMidpointAndGrowsByTheGradation) {
+  GradedSizeCap cap(2.0, 0.5);
+  const Eigen::Vector3d m(1.0, 2.0, 3.0), far(30.0, 2.0, 3.0);
+  EXPECT_TRUE(std::isinf(cap(m)));  // no edge yet
+  cap.add(m, 0.7, 10.0);
+  EXPECT_NEAR(cap(m), 1.4, kRelativeRoundoff);
+  EXPECT_NEAR(cap(m + Eigen::Vector3d(0.0, 4.0, 0.0)), 1.4 + 0.5 * 4.0, kRelativeRoundoff);
+  EXPECT_TRUE(std::isinf(cap(far)));  // beyond (10 - 1.4) / 0.5 mm the cap could not matter
+  cap.add(far, 0.5, 10.0);            // the minimum over edges
+  EXPECT_NEAR(cap(far + Eigen::Vector3d(0.0, 0.0, 2.0)), 1.0 + 0.5 * 2.0, kRelativeRoundoff);
+  EXPECT_NEAR(cap(m), 1.4, kRelativeRoundoff);
+  cap.add(m, 6.0, 10.0);  // factor * length above `largest`: not entered
+  EXPECT_EQ(cap.size(), 2u);
 }

@@ -54,6 +54,17 @@ inline LabelImage three_boxes() {
   });
 }
 
+/// A slab (id 1) under a layer two voxels thick (id 2, like skin), with an island (id 3) of 2 x 2 x 2
+/// voxels in the slab touching the layer: the small 1|2|3 junction loops around the contact are far
+/// shorter than the edges of a coarse budget (like a small fgt island touching the skin).
+inline LabelImage island_under_layer() {
+  return make_image({30, 30, 20}, {1.0, 1.0, 1.0}, [](int i, int j, int k) {
+    if (i < 5 || i >= 25 || j < 5 || j >= 25 || k < 5 || k >= 15) return 0;
+    if (k >= 13) return 2;
+    return i >= 14 && i < 16 && j >= 14 && j < 16 && k >= 11 ? 3 : 1;
+  });
+}
+
 inline SurfaceExtraction extract(const LabelImage& img, int n_tissues, int iterations = 10) {
   std::vector<std::string> names;
   for (int i = 1; i <= n_tissues; ++i) names.push_back("t" + std::to_string(i));

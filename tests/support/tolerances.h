@@ -202,4 +202,9 @@ constexpr double kHomogeneousStateRel = 1e-9;
 /// 0.8 %), while the standard tet4 is 48 % and 37 % below: 15 % separates the two by 3x.
 constexpr double kLockingFreeRel = 0.15;
 
+/// Smallest angle of the remeshed triangles touching the small junction loops of
+/// island_under_layer() at budgets 100-150: measured 16.2-21.7 degrees with the size cap around
+/// stuck junction edges, 11.2-13.5 without it; 15 separates the two.
+constexpr double kGradedLoopMinAngleDeg = 15.0;
+
 }  // namespace tissuemesh::test
