@@ -34,7 +34,8 @@ void Mesh3Optimisation::emit(YAML::Emitter& out) const {
   out << YAML::Key << "smooth_near_planar_deg" << YAML::Value << smooth_near_planar_deg;
 }
 
-SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings) {
+SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings,
+                            const SurfaceProjector& onto_surface) {
   SliverRepair r;
   const bool wanted = options.remove_boundary_slivers_deg > 0 || options.flip_slivers_below_deg > 0 ||
                       options.smooth_slivers_below_deg > 0;
@@ -47,7 +48,8 @@ SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std
   if (options.flip_slivers_below_deg > 0)
     r.sliver_flips = flip_slivers(mesh, options.flip_slivers_below_deg, options.interface_flips);
   if (options.smooth_slivers_below_deg > 0)
-    r.sliver_smoothing = smooth_slivers(mesh, options.smooth_slivers_below_deg, options.smooth_near_planar_deg);
+    r.sliver_smoothing = smooth_slivers(mesh, options.smooth_slivers_below_deg, options.smooth_near_planar_deg,
+                                        onto_surface);
   return r;
 }
 

@@ -37,7 +37,8 @@ struct Mesh3Optimisation {
   /// Then move the vertices of tets with a dihedral below this (degrees) to raise the smallest
   /// angle around them (sliver_smoothing.h): vertices inside one tissue freely, vertices on a
   /// flat boundary or interface within its plane; interfaces, boundary and volumes unchanged.
-  /// 0 = off.
+  /// In the surface pipeline also vertices on a curved boundary or interface, over the input
+  /// surface (they stay on it). 0 = off.
   double smooth_slivers_below_deg = 15.0;
   /// Let that smoothing also move vertices of nearly flat boundary or interface patches (face
   /// normals within this angle, degrees) in the plane that keeps every tissue's volume: the
@@ -56,12 +57,15 @@ struct Mesh3Optimisation {
 struct SliverRepair {
   BoundarySliverRemoval boundary_slivers;  ///< flat caps removed from the outer boundary
   SliverFlipResult sliver_flips;           ///< flips applied inside tissues
-  SliverSmoothingResult sliver_smoothing;  ///< vertices moved (free and in-plane)
+  SliverSmoothingResult sliver_smoothing;  ///< vertices moved (free, in-plane, on the surface)
 };
 
 /// The repairs `options` asks for (remove_boundary_slivers_deg, flip_slivers_below_deg,
 /// smooth_slivers_below_deg; in that order), on a
 /// mesh just extracted from CGAL; a mesh too large for them is left as it is, with a warning.
-SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings);
+/// `onto_surface` (optional): the surface the mesh's boundary and interfaces approximate, for the
+/// smoothing of vertices on curved ones (sliver_smoothing.h).
+SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings,
+                            const SurfaceProjector& onto_surface = {});
 
 }  // namespace tissuemesh

@@ -85,6 +85,7 @@ void add_sliver_repair_json(nlohmann::json& j, const SliverRepair& repair) {
                        {"interface_flips", f.interface_flips},
                        {"volume_moved_between_tissues_mm3", f.volume_relabelled_mm3}};
   j["sliver_smoothing"] = {{"vertex_moves", repair.sliver_smoothing.moved_vertices},
+                           {"vertex_moves_on_curved_surface", repair.sliver_smoothing.moved_on_surface},
                            {"passes", repair.sliver_smoothing.passes}};
 }
 
@@ -95,7 +96,9 @@ std::string sliver_repair_text(const SliverRepair& repair) {
   s << "boundary slivers removed: " << b.tets_removed << " tets, " << fmt("%.4f mm^3\n", b.volume_removed_mm3);
   s << "sliver flips: " << f.flips_23 << " 2-3 flips, " << f.edge_removals << " edge removals (" << f.interface_flips
     << " across interfaces, " << fmt("%.4f mm^3 moved", f.volume_relabelled_mm3) << ") in " << f.passes << " passes\n";
-  s << "sliver smoothing: " << repair.sliver_smoothing.moved_vertices << " vertex moves (inside a tissue or within a flat or nearly flat boundary or interface) in "
+  s << "sliver smoothing: " << repair.sliver_smoothing.moved_vertices
+    << " vertex moves (inside a tissue, within a flat or nearly flat boundary or interface, or "
+    << repair.sliver_smoothing.moved_on_surface << " over a curved one on the input surface) in "
     << repair.sliver_smoothing.passes << " passes\n";
   return s.str();
 }

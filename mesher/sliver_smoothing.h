@@ -1,4 +1,4 @@
-// Sliver removal by moving vertices without changing any tissue's boundary.
+// Sliver removal by moving vertices, keeping every tissue's boundary where it is (or on a reference surface).
 //
 // Flips (sliver_flips.h) cannot repair a flat tet whose bad angle sits at an edge of the boundary
 // or of an interface, and CGAL's exudation cannot move vertices. Two kinds of vertices can move
@@ -15,6 +15,14 @@
 // plane orthogonal to their tissue's volume gradient (recomputed at each move), so every tissue's
 // volume stays as it was (to round-off), while the surface there moves off its place by at most
 // sin(2 near_planar_deg) times the move (the gradient is the area-weighted sum of the face normals).
+// Optionally (a `SurfaceProjector` is given; the surface pipeline gives its input surface) also
+// vertices on a curved boundary or interface: every face at them lies on one region pair p|q,
+// with normals within 45 degrees of the first one's (no crease, no rim of a thin sheet), and they
+// move over the reference surface's p|q patch (each trial position projected onto it), so the
+// mesh's boundary keeps its vertices on the reference surface and only its triangles between them
+// change (a tissue's volume changes by the second-order difference). A projection that lands
+// further away than twice the step (the far side of a thin sheet of tissue) is not tried. This
+// kind takes precedence over near-planar.
 // For each tet below the target, in order of quality then index, each of its movable vertices is
 // moved by a deterministic pattern search (steps along the axes and along the normal of the face
 // opposite it in its star's worst tet, projected into its plane for a planar vertex, halved from
@@ -27,19 +35,28 @@
 
 #include "core/tet_mesh.h"
 
+#include <Eigen/Core>
+
 #include <cstddef>
+#include <functional>
 
 namespace tissuemesh {
 
+/// Moves `x` (mm) to its closest point on the reference surface's patch between regions p < q
+/// (tissue ids, 0 = outside); false when the reference has no such patch.
+using SurfaceProjector = std::function<bool(int p, int q, Eigen::Vector3d& x)>;
+
 struct SliverSmoothingResult {
   std::size_t moved_vertices = 0;  ///< vertex moves kept (a vertex moved in two passes counts twice)
+  std::size_t moved_on_surface = 0;  ///< of these, moves over a curved boundary or interface
   std::size_t passes = 0;          ///< sweeps over the bad tets
 };
 
 /// Moves free and planar vertices of tets with a dihedral angle below `target_deg` (degrees), at most
 /// `max_passes` sweeps. Requires mesh.points.size() < kMaxFaceKeyNodes (mesher/face_key.h).
-/// `near_planar_deg` (degrees; 0 = exactly flat patches only) as above.
+/// `near_planar_deg` (degrees; 0 = exactly flat patches only) and `onto_surface` (empty = none)
+/// as above.
 SliverSmoothingResult smooth_slivers(TetMesh& mesh, double target_deg, double near_planar_deg = 0.0,
-                                     int max_passes = 4);
+                                     const SurfaceProjector& onto_surface = {}, int max_passes = 4);
 
 }  // namespace tissuemesh

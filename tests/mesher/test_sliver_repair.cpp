@@ -332,3 +332,56 @@ TEST(SliverSmoothing, SlidesANearlyFlatBoundaryNodeKeepingTheVolume) {
             << after.total.min_dihedral_deg << " deg, node slid " << moved.norm() << " mm\n";
   EXPECT_GE(after.total.min_dihedral_deg, 10.0);
 }
+
+// The box's bottom is a spherical cap (radius 12 mm, centre above the box: face normals up to
+// ~28 degrees from vertical, ~14 degrees apart around the middle node), and its middle bottom node
+// is pushed along the sphere until its tets are slivers. Neither exactly-planar nor 5-degree
+// near-planar smoothing can move it; with a projector onto the sphere (the reference surface of
+// the box's boundary) it moves over the sphere: every node that was on the sphere still is, to
+// round-off, and the worst angle recovers.
+TEST(SliverSmoothing, MovesANodeOfACurvedBoundaryOverTheReferenceSurface) {
+  const Eigen::Vector3d centre(4, 4, 12);
+  const double radius = 12.0;
+  auto onto_sphere = [&](Eigen::Vector3d x) { return Eigen::Vector3d(centre + radius * (x - centre).normalized()); };
+  TetMesh mesh = test::box_mesh({0, 0, 0}, {8, 8, 4}, 4, 4, 2);
+  for (auto& x : mesh.points)
+    if (x.z() == 0.0) x.z() = centre.z() - std::sqrt(radius * radius - (x - centre).head<2>().squaredNorm());
+  const int bottom = push_node(mesh, {4, 4, 0}, {0, 0, 0});
+  Eigen::Vector3d& b = mesh.points[static_cast<std::size_t>(bottom)];
+  b = onto_sphere(b + Eigen::Vector3d(1.8, 1.8, 0));
+  ASSERT_EQ(check_conformity(mesh).inverted_tets, 0u);
+  const QualityReport before = compute_quality(mesh);
+  ASSERT_LT(before.total.min_dihedral_deg, 10.0);
+  const TetMesh original = mesh;
+  auto on_sphere = [&](const Eigen::Vector3d& x) {
+    return std::abs((x - centre).norm() - radius) <= test::kRelativeRoundoff * radius;
+  };
+
+  TetMesh without = mesh;
+  smooth_slivers(without, 15.0, /*near_planar_deg=*/5.0);
+  EXPECT_EQ(without.points[static_cast<std::size_t>(bottom)], b);
+
+  int projections = 0;
+  const SurfaceProjector projector = [&](int p, int q, Eigen::Vector3d& x) {
+    EXPECT_EQ(std::make_pair(p, q), std::make_pair(0, 1));  // the box's boundary is its only pair
+    ++projections;
+    x = onto_sphere(x);
+    return true;
+  };
+  const SliverSmoothingResult r = smooth_slivers(mesh, 15.0, /*near_planar_deg=*/5.0, projector);
+  EXPECT_GT(projections, 0);
+  EXPECT_GE(r.moved_on_surface, 1u);
+  const Eigen::Vector3d moved = mesh.points[static_cast<std::size_t>(bottom)] - original.points[static_cast<std::size_t>(bottom)];
+  EXPECT_GT(moved.norm(), 0.1);
+  EXPECT_EQ(mesh.tets, original.tets);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (on_sphere(original.points[i])) EXPECT_TRUE(on_sphere(mesh.points[i])) << "node " << i << " left the sphere";
+  EXPECT_EQ(check_conformity(mesh).inverted_tets, 0u);
+  const QualityReport after = compute_quality(mesh);
+  std::cout << "[ smooth   ] cap: min dihedral " << before.total.min_dihedral_deg << " -> "
+            << after.total.min_dihedral_deg << " deg, node moved " << moved.norm() << " mm over the sphere\n";
+  EXPECT_GE(after.total.min_dihedral_deg, 10.0);
+  TetMesh again = original;
+  smooth_slivers(again, 15.0, 5.0, projector);
+  EXPECT_EQ(again.points, mesh.points);  // deterministic
+}
