@@ -96,10 +96,11 @@ std::string sliver_repair_text(const SliverRepair& repair) {
   s << "boundary slivers removed: " << b.tets_removed << " tets, " << fmt("%.4f mm^3\n", b.volume_removed_mm3);
   s << "sliver flips: " << f.flips_23 << " 2-3 flips, " << f.edge_removals << " edge removals (" << f.interface_flips
     << " across interfaces, " << fmt("%.4f mm^3 moved", f.volume_relabelled_mm3) << ") in " << f.passes << " passes\n";
-  s << "sliver smoothing: " << repair.sliver_smoothing.moved_vertices
-    << " vertex moves (inside a tissue, within a flat or nearly flat boundary or interface, or "
-    << repair.sliver_smoothing.moved_on_surface << " over a curved one on the input surface) in "
-    << repair.sliver_smoothing.passes << " passes\n";
+  const SliverSmoothingResult& m = repair.sliver_smoothing;
+  s << "sliver smoothing: " << m.moved_vertices
+    << " vertex moves (inside a tissue or within a flat or nearly flat boundary or interface";
+  if (m.moved_on_surface > 0) s << "; " << m.moved_on_surface << " of them over a curved one, on the input surface";
+  s << ") in " << m.passes << " passes\n";
   return s.str();
 }
 
