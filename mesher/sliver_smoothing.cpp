@@ -24,8 +24,8 @@ TetShape shape(const TetMesh& mesh, const std::array<int, 4>& k) {
 // Unit normals of surface faces at a vertex that are this close (radians) count as one plane: a
 // move by d within it leaves the surface within d * 1e-6 of where it was.
 constexpr double kPlanarRad = 1e-6;
-// A vertex moves over the reference surface only where its face normals are within this angle
-// (radians) of the first one's: a curved patch, not a crease or the rim of a thin sheet, which a
+// A vertex moves over the reference surface only where its oriented face normals are within this
+// angle (radians) of the first one's: a curved patch, not a crease or the rim of a thin sheet, which a
 // move projected onto one side would cut. (Measured on the 21K phantom: at 30 degrees a 9.14-degree
 // sliver on a bent fgt sheet stays; at 45 it is repaired, as with no limit.)
 constexpr double kOnSurfaceMaxRad = 45.0 * M_PI / 180.0;
@@ -37,6 +37,11 @@ struct Mobility {
   double min_cos = 1.0;             ///< smallest |cos| between its face normals and the first
   int tissue = 0;                   ///< kInPlane: the (non-outside) tissue of its region pair
   std::pair<int, int> pair{-1, -1};  ///< kInPlane, kOnSurface: the region pair of its faces
+  /// Unit normal of its first face oriented from pair.first into pair.second, and the smallest
+  /// (signed) cos between it and its other faces' oriented normals: a fold (the rim of a thin sheet
+  /// of tissue, faces facing each other) has a negative one, however flat it looks unoriented.
+  Eigen::Vector3d oriented{0, 0, 0};
+  double min_oriented_cos = 1.0;
   /// kInPlane with faces not all in one plane (min_cos below cos(kPlanarRad)): moves in the plane
   /// that keeps its tissue's volume (volume_plane), computed at each move from the star's nodes.
   bool near_planar() const { return kind == kInPlane && min_cos < std::cos(kPlanarRad); }
@@ -84,15 +89,20 @@ std::vector<Mobility> mobility(const TetMesh& mesh, double near_planar_rad, bool
       const Eigen::Vector3d a = mesh.points[face.nodes[0]], b = mesh.points[face.nodes[1]], c = mesh.points[face.nodes[2]];
       Eigen::Vector3d n = (b - a).cross(c - a);
       if (n.norm() > 0) n.normalize();
+      // Outward from this tet's tissue (away from its fourth node), then from pair.first into pair.second.
+      Eigen::Vector3d o = n.dot(mesh.points[static_cast<std::size_t>(k[f])] - a) > 0 ? Eigen::Vector3d(-n) : n;
+      if (mesh.tissue_ids[t] != pair.first) o = -o;
       for (int v : face.nodes) {
         Mobility& m = out[static_cast<std::size_t>(v)];
         if (m.kind == Mobility::kFree) {
           m.kind = n.norm() > 0 ? Mobility::kInPlane : Mobility::kFixed;
           m.normal = n;
+          m.oriented = o;
           m.tissue = pair.second;
           m.pair = pair;
         } else if (m.kind == Mobility::kInPlane) {
           m.min_cos = std::min(m.min_cos, std::abs(m.normal.dot(n)));
+          m.min_oriented_cos = std::min(m.min_oriented_cos, m.oriented.dot(o));
           if (m.pair != pair || n.norm() == 0) m.kind = Mobility::kFixed;
         }
       }
@@ -103,7 +113,7 @@ std::vector<Mobility> mobility(const TetMesh& mesh, double near_planar_rad, bool
   for (Mobility& m : out)
     if (m.kind == Mobility::kInPlane) {
       const bool planar = m.min_cos >= std::cos(kPlanarRad);
-      if (!planar && on_surface && m.min_cos >= std::cos(kOnSurfaceMaxRad)) m.kind = Mobility::kOnSurface;
+      if (!planar && on_surface && m.min_oriented_cos >= std::cos(kOnSurfaceMaxRad)) m.kind = Mobility::kOnSurface;
       else if (m.min_cos < min_cos) m.kind = Mobility::kFixed;
     }
   return out;

@@ -17,12 +17,12 @@
 // sin(2 near_planar_deg) times the move (the gradient is the area-weighted sum of the face normals).
 // Optionally (a `SurfaceProjector` is given; the surface pipeline gives its input surface) also
 // vertices on a curved boundary or interface: every face at them lies on one region pair p|q,
-// with normals within 45 degrees of the first one's (no crease, no rim of a thin sheet), and they
-// move over the reference surface's p|q patch (each trial position projected onto it), so the
-// mesh's boundary keeps its vertices on the reference surface and only its triangles between them
-// change (a tissue's volume changes by the second-order difference). A projection that lands
-// further away than twice the step (the far side of a thin sheet of tissue) is not tried. This
-// kind takes precedence over near-planar.
+// with oriented normals (p into q) within 45 degrees of the first one's (no crease, no fold at
+// the rim of a thin sheet), and they move over the reference surface's p|q patch (each trial
+// position projected onto it), so the mesh's boundary keeps its vertices on the reference surface
+// and only its triangles between them change (a tissue's volume changes by the second-order
+// difference). A projection that lands further away than twice the step (the far side of a thin
+// sheet of tissue) is not tried. This kind takes precedence over near-planar.
 // For each tet below the target, in order of quality then index, each of its movable vertices is
 // moved by a deterministic pattern search (steps along the axes and along the normal of the face
 // opposite it in its star's worst tet, projected into its plane for a planar vertex, halved from
