@@ -385,3 +385,36 @@ TEST(SliverSmoothing, MovesANodeOfACurvedBoundaryOverTheReferenceSurface) {
   smooth_slivers(again, 15.0, 5.0, projector);
   EXPECT_EQ(again.points, mesh.points);  // deterministic
 }
+
+// A knife-edge fin of tissue (half-angle ~10 degrees): the node in the middle of its edge has
+// boundary faces on both sides of the fin, whose unoriented normals are within ~20 degrees of each
+// other but whose outward normals face away from each other. It is a fold, not a curved patch:
+// moving it over the surface would cut the rim, so it is never offered to the projector.
+TEST(SliverSmoothing, KeepsTheNodeOnTheRimOfAThinFinFixed) {
+  const double h = 0.18;  // fin half-thickness at 1 mm from its edge
+  std::vector<Eigen::Vector3d> points;
+  for (int y = 0; y <= 2; ++y) {
+    points.push_back({0, double(y), 0});   // 3y:     on the edge
+    points.push_back({-1, double(y), h});  // 3y + 1: top
+    points.push_back({-1, double(y), -h}); // 3y + 2: bottom
+  }
+  std::vector<std::array<int, 4>> tets;
+  for (int y = 0; y < 2; ++y) {  // prism (e0 t0 b0 | e1 t1 b1) as three tets
+    const int e0 = 3 * y, t0 = e0 + 1, b0 = e0 + 2, e1 = e0 + 3, t1 = e0 + 4, b1 = e0 + 5;
+    tets.push_back({e0, t0, b0, e1});
+    tets.push_back({t0, b0, e1, t1});
+    tets.push_back({b0, e1, t1, b1});
+  }
+  TetMesh mesh = oriented_mesh(points, tets, {1, 1, 1, 1, 1, 1}, {"fin"});
+  ASSERT_EQ(check_conformity(mesh).inverted_tets, 0u);
+  ASSERT_LT(compute_quality(mesh).total.min_dihedral_deg, 30.0);
+  int projections = 0;
+  const SurfaceProjector projector = [&](int, int, Eigen::Vector3d&) {
+    ++projections;
+    return true;
+  };
+  const SliverSmoothingResult r = smooth_slivers(mesh, 30.0, 0.0, projector);
+  EXPECT_EQ(projections, 0);
+  EXPECT_EQ(r.moved_on_surface, 0u);
+  EXPECT_EQ(mesh.points[3], Eigen::Vector3d(0, 1, 0));
+}
