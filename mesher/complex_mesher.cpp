@@ -18,8 +18,8 @@
 
 #include <cmath>
 #include <functional>
-#include <map>
 #include <memory>
+#include <optional>
 #include <utility>
 
 namespace tissuemesh {
@@ -115,19 +115,19 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
   auto stage = progress.stage("extract mesh");
   result.mesh = mesh3::cells(
       c3t3, [](double x, double y, double z) { return Eigen::Vector3d(x, y, z); }, false, surface.tissue_names);
-  // The smoothing may move vertices of curved interfaces over the input surface (they stay on it).
-  const SurfaceProjection projection(surface);
-  std::map<std::pair<int, int>, int> patch_of_pair;
-  for (std::size_t i = 0; i < projection.patches().pair_of_patch.size(); ++i) {
-    const auto& pq = projection.patches().pair_of_patch[i];
-    patch_of_pair.emplace(std::make_pair(pq[0], pq[1]), static_cast<int>(i));
+  // The smoothing may move vertices of curved interfaces over the input surface (they stay on it);
+  // the projection's trees are built only when it runs.
+  std::optional<SurfaceProjection> projection;
+  SurfaceProjector onto_surface;
+  if (params.optimise.smooth_slivers_below_deg > 0) {
+    projection.emplace(surface);
+    onto_surface = [&](int p, int q, Eigen::Vector3d& x) {
+      const int patch = projection->patches().patch_of_pair(p, q);
+      if (patch < 0) return false;
+      x = projection->onto_patch(patch, x);
+      return true;
+    };
   }
-  const SurfaceProjector onto_surface = [&](int p, int q, Eigen::Vector3d& x) {
-    const auto it = patch_of_pair.find({p, q});
-    if (it == patch_of_pair.end()) return false;
-    x = projection.onto_patch(it->second, x);
-    return true;
-  };
   result.repair = repair_slivers(result.mesh, params.optimise, result.warnings, onto_surface);
   stage.note(std::to_string(result.mesh.tets.size()) + " tets, " + std::to_string(result.mesh.points.size()) +
              " nodes");

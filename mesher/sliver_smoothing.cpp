@@ -33,14 +33,14 @@ constexpr double kOnSurfaceMaxRad = 45.0 * M_PI / 180.0;
 // How a vertex may move without changing any tissue's boundary (near-planar: its volume).
 struct Mobility {
   enum Kind : char { kFixed, kFree, kInPlane, kOnSurface } kind = kFixed;
-  Eigen::Vector3d normal{0, 0, 0};  ///< kInPlane, kOnSurface: unit normal of (the first of) its faces
-  double min_cos = 1.0;             ///< smallest |cos| between its face normals and the first
-  int tissue = 0;                   ///< kInPlane: the (non-outside) tissue of its region pair
-  std::pair<int, int> pair{-1, -1};  ///< kInPlane, kOnSurface: the region pair of its faces
-  /// Unit normal of its first face oriented from pair.first into pair.second, and the smallest
-  /// (signed) cos between it and its other faces' oriented normals: a fold (the rim of a thin sheet
-  /// of tissue, faces facing each other) has a negative one, however flat it looks unoriented.
-  Eigen::Vector3d oriented{0, 0, 0};
+  /// The region pair of its faces (pair.second: the tissue whose volume near-planar moves keep).
+  std::pair<int, int> pair{-1, -1};
+  /// Unit normal of its first face, oriented from pair.first into pair.second (kInPlane: of the
+  /// plane it moves in), and the smallest |cos| and signed cos between it and its other faces'
+  /// oriented normals: a fold (the rim of a thin sheet of tissue, faces facing each other) has a
+  /// negative signed one, however flat it looks unoriented.
+  Eigen::Vector3d normal{0, 0, 0};
+  double min_cos = 1.0;
   double min_oriented_cos = 1.0;
   /// kInPlane with faces not all in one plane (min_cos below cos(kPlanarRad)): moves in the plane
   /// that keeps its tissue's volume (volume_plane), computed at each move from the star's nodes.
@@ -96,13 +96,11 @@ std::vector<Mobility> mobility(const TetMesh& mesh, double near_planar_rad, bool
         Mobility& m = out[static_cast<std::size_t>(v)];
         if (m.kind == Mobility::kFree) {
           m.kind = n.norm() > 0 ? Mobility::kInPlane : Mobility::kFixed;
-          m.normal = n;
-          m.oriented = o;
-          m.tissue = pair.second;
+          m.normal = o;
           m.pair = pair;
         } else if (m.kind == Mobility::kInPlane) {
-          m.min_cos = std::min(m.min_cos, std::abs(m.normal.dot(n)));
-          m.min_oriented_cos = std::min(m.min_oriented_cos, m.oriented.dot(o));
+          m.min_cos = std::min(m.min_cos, std::abs(m.normal.dot(o)));
+          m.min_oriented_cos = std::min(m.min_oriented_cos, m.normal.dot(o));
           if (m.pair != pair || n.norm() == 0) m.kind = Mobility::kFixed;
         }
       }
@@ -194,7 +192,7 @@ class Smoother {
   /// Pattern search on v's position, in its plane when it has one; true when v moved.
   bool improve(int v, Mobility mobility) {
     if (mobility.near_planar()) {
-      mobility.normal = volume_plane(mesh_, star(v), v, mobility.tissue);
+      mobility.normal = volume_plane(mesh_, star(v), v, mobility.pair.second);
       if (mobility.normal.isZero()) return false;
     }
     Eigen::Vector3d& p = mesh_.points[static_cast<std::size_t>(v)];

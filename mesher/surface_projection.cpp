@@ -8,6 +8,7 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <algorithm>
 #include <map>
 
 namespace tissuemesh {
@@ -37,6 +38,11 @@ PatchNumbering number_patches(const TriSurface& surface) {
     n.patch_of_triangle.push_back(it->second);
   }
   return n;
+}
+
+int PatchNumbering::patch_of_pair(int p, int q) const {
+  const auto it = std::find(pair_of_patch.begin(), pair_of_patch.end(), std::array<int, 2>{p, q});
+  return it == pair_of_patch.end() ? -1 : static_cast<int>(it - pair_of_patch.begin());
 }
 
 struct SurfaceProjection::Trees {

@@ -22,6 +22,8 @@ namespace tissuemesh {
 struct PatchNumbering {
   std::vector<int> patch_of_triangle;
   std::vector<std::array<int, 2>> pair_of_patch;
+  /// The patch of region pair p|q (p < q), -1 when the surface has none.
+  int patch_of_pair(int p, int q) const;
 };
 PatchNumbering number_patches(const TriSurface& surface);
 
