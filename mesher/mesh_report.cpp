@@ -251,6 +251,8 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                     {"junction_curve_vertices", r.extraction.curve_vertices},
                     {"junction_corner_vertices", r.extraction.corner_vertices},
                     {"unfolded_vertex_moves", r.extraction.unfolded_vertices},
+                    {"islands_absorbed",
+                     {{"islands", r.extraction.islands.islands}, {"voxels", r.extraction.islands.voxels}}},
                     {"voxel_repair",
                      {{"relabelled_voxels", r.extraction.repair.relabelled_voxels},
                       {"passes", r.extraction.repair.passes}}},
@@ -326,7 +328,9 @@ std::string surface_job_text(const SurfaceJobResult& r) {
   o << "extracted surface: " << e.points.size() << " vertices, " << e.triangles.size()
     << " triangles (each interface once), " << e.junctions.size() << " junction polylines ("
     << r.extraction.curve_vertices << " curve vertices, " << r.extraction.corner_vertices << " corners); "
-    << r.extraction.repair.relabelled_voxels << " voxels relabelled to remove non-manifold configurations, "
+    << r.extraction.islands.islands << " islands (" << r.extraction.islands.voxels
+    << " voxels) given to their surroundings, " << r.extraction.repair.relabelled_voxels
+    << " voxels relabelled to remove non-manifold configurations, "
     << r.extraction.unfolded_vertices << " vertex moves to undo folds\n";
   if (r.remesh) {
     o << "remeshed surface: " << s.points.size() << " vertices, " << s.triangles.size() << " triangles, "

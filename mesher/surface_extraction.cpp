@@ -170,6 +170,10 @@ void relax(std::vector<Eigen::Vector3d>& x, const std::vector<std::array<int, 3>
 
 }  // namespace
 
+namespace {
+constexpr int kIslandRounds = 4;  // absorb + repair rounds; the phantom needs 2
+}  // namespace
+
 SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::string>& tissue_names,
                                   const SurfaceParams& params, Progress& progress) {
   const int regions = static_cast<int>(tissue_names.size());
@@ -180,10 +184,25 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
   SurfaceExtraction out;
   LabelImage work = ids;
   {
-    auto stage = progress.stage("repair non-manifold voxel configurations");
-    out.repair = make_well_composed(work);
-    stage.note(std::to_string(out.repair.relabelled_voxels) + " voxels relabelled in " +
-               std::to_string(out.repair.passes) + " passes");
+    // The repair can cut a thin filament off a tissue (it relabels pinch voxels), leaving a new
+    // island, and an absorbed island can leave a pinch: alternate until neither changes anything
+    // (the repair only raises ids and each absorption removes an island, so this ends quickly).
+    auto stage = progress.stage("absorb islands under " + std::to_string(params.min_island_voxels) +
+                                " voxels, repair non-manifold voxel configurations");
+    const auto min_voxels = static_cast<std::size_t>(params.min_island_voxels);
+    for (int round = 0; round < kIslandRounds; ++round) {
+      const IslandAbsorption islands = absorb_small_islands(work, min_voxels);
+      out.islands.islands += islands.islands;
+      out.islands.voxels += islands.voxels;
+      if (round > 0 && islands.islands == 0) break;
+      const LabelRepairResult repair = make_well_composed(work);
+      out.repair.relabelled_voxels += repair.relabelled_voxels;
+      out.repair.passes += repair.passes;
+      if (repair.relabelled_voxels == 0) break;
+    }
+    stage.note(std::to_string(out.islands.islands) + " islands (" + std::to_string(out.islands.voxels) +
+               " voxels) absorbed, " + std::to_string(out.repair.relabelled_voxels) + " voxels relabelled in " +
+               std::to_string(out.repair.passes) + " repair passes");
   }
   auto stage = progress.stage("surface nets");
   NetBuilder net(work);

@@ -5,6 +5,8 @@
 // paper's deformable multi-material 2-simplex mesh (Rashid et al. 2017) because it is linear in the
 // voxel count, has no force weights to tune, and its constraints give the guarantees this stage
 // needs by construction rather than by convergence:
+//   0. tissue components below `min_island_voxels` join the region around them
+//      (mesher/small_islands.h): nothing that small is resolved by the mesh;
 //   1. every region is made well-composed (mesher/label_repair.h), so each tissue's boundary is a
 //      closed 2-manifold;
 //   2. one vertex per voxel corner touched by a boundary, one quad per voxel face between two
@@ -27,6 +29,7 @@
 #include "core/progress.h"
 #include "core/tri_surface.h"
 #include "mesher/label_repair.h"
+#include "mesher/small_islands.h"
 #include "mesher/surface_checks.h"
 #include "mesher/surface_params.h"
 
@@ -37,6 +40,7 @@ namespace tissuemesh {
 
 struct SurfaceExtraction {
   TriSurface surface;
+  IslandAbsorption islands;      ///< sub-resolution components given to their surroundings
   LabelRepairResult repair;      ///< voxels relabelled to remove non-manifold configurations
   std::size_t curve_vertices = 0;   ///< vertices inside junction polylines
   std::size_t corner_vertices = 0;  ///< fixed vertices: polyline ends, where curves meet

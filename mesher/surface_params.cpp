@@ -8,6 +8,10 @@ namespace tissuemesh {
 
 SurfaceParams SurfaceParams::from_yaml(YamlMap& m) {
   SurfaceParams p;
+  p.min_island_voxels = m.integer("min_island_voxels", p.min_island_voxels);
+  if (p.min_island_voxels < 1 || p.min_island_voxels > 1000000)
+    throw InputError(m.where("min_island_voxels") + ": must be in 1..1000000 voxels (1 = keep every component), got " +
+                     std::to_string(p.min_island_voxels));
   p.relaxation_iterations = m.integer("relaxation_iterations", p.relaxation_iterations);
   if (p.relaxation_iterations < 0 || p.relaxation_iterations > 1000)
     throw InputError(m.where("relaxation_iterations") + ": must be in 0..1000, got " +
@@ -29,6 +33,7 @@ SurfaceParams SurfaceParams::from_yaml(YamlMap& m) {
 
 void SurfaceParams::to_yaml(YAML::Emitter& out) const {
   out << YAML::BeginMap;
+  out << YAML::Key << "min_island_voxels" << YAML::Value << min_island_voxels;
   out << YAML::Key << "relaxation_iterations" << YAML::Value << relaxation_iterations;
   out << YAML::Key << "target_vertices" << YAML::Value << target_vertices;
   out << YAML::Key << "target_edge_mm" << YAML::Value << target_edge_mm;

@@ -1,6 +1,7 @@
 // Parameters of the surface pipeline (config section `surface:`, issue #5).
 //
 //   surface:
+//     min_island_voxels: 8        # tissue components with fewer voxels join their surroundings (1 = keep all)
 //     relaxation_iterations: 10   # Taubin lambda|mu pairs of the constrained relaxation (0 = voxel corners)
 //     target_vertices: 0          # total vertex budget of the remeshed complex (0 = no remeshing)
 //     target_edge_mm: 0           # or a target edge length in mm (used when target_vertices is 0)
@@ -12,6 +13,9 @@
 namespace tissuemesh {
 
 struct SurfaceParams {
+  /// Tissue components with fewer voxels take the region around them before extraction
+  /// (mesher/small_islands.h); 1 keeps every component.
+  int min_island_voxels = 8;
   int relaxation_iterations = 10;  ///< Taubin lambda|mu pairs (mesher/surface_extraction.h); 0 = none
   int target_vertices = 0;         ///< remeshing vertex budget; 0 = none (see target_edge_mm)
   double target_edge_mm = 0.0;     ///< remeshing edge length, mm, when target_vertices == 0; 0 = none

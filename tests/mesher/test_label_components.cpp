@@ -1,4 +1,5 @@
 #include "mesher/label_components.h"
+#include "mesher/small_islands.h"
 
 #include <gtest/gtest.h>
 
@@ -46,4 +47,65 @@ TEST(LabelComponents, CentroidIsPhysical) {
   const ComponentMap m = find_components(img);
   ASSERT_EQ(m.components.size(), 1u);
   EXPECT_DOUBLE_EQ(m.components[0].centroid_mm[0], 10 - 1.0);  // voxel centres at x = 10 and 8
+}
+
+// Sub-resolution islands (mesher/small_islands.h).
+namespace {
+
+LabelImage block_of(int id, int n) {
+  LabelImage img;
+  img.dims = {n, n, n};
+  img.spacing = {1, 1, 1};
+  img.labels.assign(static_cast<std::size_t>(n) * n * n, id);
+  return img;
+}
+
+void fill(LabelImage& img, int id, int i0, int i1, int j0, int j1, int k0, int k1) {
+  for (int k = k0; k < k1; ++k)
+    for (int j = j0; j < j1; ++j)
+      for (int i = i0; i < i1; ++i) img.labels[img.index(i, j, k)] = id;
+}
+
+}  // namespace
+
+TEST(SmallIslands, IslandsUnderTheThresholdTakeTheirSurroundingsLargerOnesStay) {
+  LabelImage img = block_of(2, 14);
+  fill(img, 1, 2, 3, 2, 3, 2, 3);      // one voxel of tissue 1
+  fill(img, 1, 7, 11, 7, 11, 7, 11);   // 64 voxels of tissue 1
+  fill(img, 3, 2, 5, 8, 11, 2, 5);     // 26 voxels of tissue 3 ...
+  fill(img, 1, 3, 4, 9, 10, 3, 4);     // ... around one of tissue 1: both go, the inner one too
+  const LabelImage before = img;
+  const IslandAbsorption r = absorb_small_islands(img, 30);
+  EXPECT_EQ(r.voxels, 28u);  // 1 + 26 + 1; the 64-voxel island stays
+  EXPECT_GE(r.islands, 3u);
+  std::size_t changed_to_2 = 0;
+  for (std::size_t v = 0; v < img.labels.size(); ++v) {
+    if (before.labels[v] != img.labels[v]) {
+      EXPECT_EQ(img.labels[v], 2) << "voxel " << v;
+      ++changed_to_2;
+    }
+  }
+  EXPECT_EQ(changed_to_2, 28u);
+  EXPECT_EQ(img.at(8, 8, 8), 1);  // the large island
+  // Threshold 1 keeps everything; a second pass finds nothing left.
+  LabelImage keep = before;
+  EXPECT_EQ(absorb_small_islands(keep, 1).islands, 0u);
+  EXPECT_EQ(keep.labels, before.labels);
+  EXPECT_EQ(absorb_small_islands(img, 30).islands, 0u);
+}
+
+TEST(SmallIslands, TheMajorityOfFaceNeighboursWinsAndTheBorderCountsAsOutside) {
+  // A one-voxel island of tissue 3 on the plane between tissue 1 (below, k < 5) and tissue 2
+  // (k >= 5), sitting in tissue 2: five of its six neighbours are 2, one is 1.
+  LabelImage img = block_of(1, 10);
+  fill(img, 2, 0, 10, 0, 10, 5, 10);
+  fill(img, 3, 4, 5, 4, 5, 5, 6);
+  // A one-voxel island of tissue 3 in a corner of the image: three neighbours outside the
+  // image (outside, 0), three of tissue 1.
+  fill(img, 3, 0, 1, 0, 1, 0, 1);
+  const IslandAbsorption r = absorb_small_islands(img, 2);
+  EXPECT_EQ(r.islands, 2u);
+  EXPECT_EQ(img.at(4, 4, 5), 2);
+  // Tie 3 : 3 between outside and tissue 1: the lower id (outside) wins.
+  EXPECT_EQ(img.at(0, 0, 0), 0);
 }

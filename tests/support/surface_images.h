@@ -65,12 +65,15 @@ inline LabelImage island_under_layer() {
   });
 }
 
-inline SurfaceExtraction extract(const LabelImage& img, int n_tissues, int iterations = 10) {
+/// The test images are built voxel by voxel, some with one-voxel features on purpose: islands are
+/// kept unless `min_island_voxels` says otherwise (mesher/small_islands.h).
+inline SurfaceExtraction extract(const LabelImage& img, int n_tissues, int iterations = 10, int min_island_voxels = 1) {
   std::vector<std::string> names;
   for (int i = 1; i <= n_tissues; ++i) names.push_back("t" + std::to_string(i));
   Progress progress;
   SurfaceParams params;
   params.relaxation_iterations = iterations;
+  params.min_island_voxels = min_island_voxels;
   return extract_surface(img, names, params, progress);
 }
 
