@@ -16,7 +16,8 @@
 //             vertex to the weighted midpoint of its two curve neighbours, then onto its junction.
 //   smooth_poor  the vertices of triangles with an angle under a threshold move towards the mean of
 //             their neighbours (or halfway, or a quarter), onto their patch or junction, when that
-//             raises the smallest angle around them.
+//             raises the smallest angle around them; a surface vertex for which none does gets a
+//             pattern search over its patch for the position with the largest smallest angle.
 // Every operation keeps the patch labels, the orientation and the junction polylines (their
 // vertices and edges are replaced along the same curve), and refuses a move that flips a
 // triangle. Validity: an operation is refused when one of the triangles it creates would intersect
@@ -147,6 +148,10 @@ class RemeshComplex {
   /// every edge that still exists, in edges() order; returns how many changed it.
   template <class EdgeOperation>
   std::size_t sweep_edges(EdgeOperation operation);
+  /// Surface vertex v: a pattern search over its patch (tangent steps from the best point so far,
+  /// each projected onto the patch) for the position with the largest smallest ring angle; moves
+  /// there if that beats the current one and the guards of try_move allow it. `nb`: v's neighbours.
+  bool search_min_angle(int v, const std::vector<int>& nb);
   /// Smallest angle of v's triangles with v at p (radians).
   double ring_min_angle(int v, const Vector3d& p) const;
   /// Shorter of the two junction edges at curve vertex v with v at p (mm). Curve moves must not

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tissuemesh {
 namespace {
@@ -15,6 +16,10 @@ namespace {
 /// whose lengths average about h and never oscillate between a split and a collapse.
 constexpr double kSplitAbove = 4.0 / 3.0;
 constexpr double kCollapseBelow = 4.0 / 5.0;
+/// Pattern search of search_min_angle: first step a quarter of the shortest ring edge, halved
+/// five times (the last step is 1/128 of that edge).
+constexpr double kSearchFirstStep = 0.25;
+constexpr int kSearchLevels = 6;
 
 }  // namespace
 
@@ -107,17 +112,45 @@ std::size_t RemeshComplex::smooth_poor(double min_angle_rad) {
     }
     // The full move, else halfway, else a quarter: the first that raises the smallest angle.
     const double before = ring_min_angle(v, x_[v]);
+    bool done = false;
     for (double f : {1.0, 0.5, 0.25}) {
       Vector3d p = x_[v] + f * (target - x_[v]);
       if (f != 1.0) p = kind_[v] == Kind::Surface ? proj_.onto_patch(owner_[v], p) : proj_.onto_curve(owner_[v], p);
       if (kind_[v] != Kind::Surface && shorter_curve_edge(v, p) < shorter_curve_edge(v, x_[v])) continue;
       if (ring_min_angle(v, p) > before && try_move(v, p)) {
-        ++moved;
+        done = true;
         break;
       }
     }
+    if (!done && kind_[v] == Kind::Surface) done = search_min_angle(v, nb);
+    moved += done;
   }
   return moved;
+}
+
+bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
+  Vector3d n = Vector3d::Zero();
+  for (int t : vt_[v]) n += area_vector(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]);
+  if (n.norm() == 0.0) return false;
+  n.normalize();
+  const Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  double step = std::numeric_limits<double>::infinity();
+  for (int w : nb) step = std::min(step, (x_[w] - x_[v]).norm());
+  step *= kSearchFirstStep;
+  Vector3d best = x_[v];
+  double best_angle = ring_min_angle(v, best);
+  const double before = best_angle;
+  for (int level = 0; level < kSearchLevels; ++level, step *= 0.5) {
+    // Eight directions in the tangent plane; the landing point is projected onto v's patch.
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * M_PI / 4.0;
+      Vector3d p;
+      if (!tangential_target(v, best + step * (std::cos(a) * t1 + std::sin(a) * t2), p)) continue;
+      const double angle = ring_min_angle(v, p);
+      if (angle > best_angle) best = p, best_angle = angle;
+    }
+  }
+  return best_angle > before && try_move(v, best);
 }
 
 std::size_t RemeshComplex::grade_stuck_edges(double below) {

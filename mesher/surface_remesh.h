@@ -6,7 +6,8 @@
 // equilateral mesh of area A at edge h has about 2A / (sqrt(3) h^2) vertices), is rescaled by the
 // measured count after the first rounds, and a final pass collapses the shortest or splits the
 // longest edges (relative to h) until the count is exactly the budget. Polish: flips, relaxation,
-// then angle-improving smoothing of the vertices of triangles with an angle under 30 degrees.
+// then angle-improving smoothing of the vertices of triangles with an angle under 30 degrees
+// (towards the neighbours' mean, else the best position a pattern search over the patch finds).
 // From the second round on, h is capped near junction edges that stay far shorter than h (fixed
 // corners close together, guards): mesher/graded_size_cap.h.
 // Validity: no operation is applied that would make two triangles intersect (an exact guard,

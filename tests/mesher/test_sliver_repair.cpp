@@ -374,8 +374,11 @@ TEST(SliverSmoothing, MovesANodeOfACurvedBoundaryOverTheReferenceSurface) {
   const Eigen::Vector3d moved = mesh.points[static_cast<std::size_t>(bottom)] - original.points[static_cast<std::size_t>(bottom)];
   EXPECT_GT(moved.norm(), 0.1);
   EXPECT_EQ(mesh.tets, original.tets);
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
-    if (on_sphere(original.points[i])) EXPECT_TRUE(on_sphere(mesh.points[i])) << "node " << i << " left the sphere";
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    if (on_sphere(original.points[i])) {
+      EXPECT_TRUE(on_sphere(mesh.points[i])) << "node " << i << " left the sphere";
+    }
+  }
   EXPECT_EQ(check_conformity(mesh).inverted_tets, 0u);
   const QualityReport after = compute_quality(mesh);
   std::cout << "[ smooth   ] cap: min dihedral " << before.total.min_dihedral_deg << " -> "

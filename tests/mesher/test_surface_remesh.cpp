@@ -232,3 +232,32 @@ TEST(GradedSizeCap, IsTheFactorTimesTheEdgeAtItsMidpointAndGrowsByTheGradation) 
   cap.add(m, 6.0, 10.0);  // factor * length above `largest`: not entered
   EXPECT_EQ(cap.size(), 2u);
 }
+
+TEST(SurfaceRemesh, AngleSmoothingSearchesThePatchForTheBestPosition) {
+  // The vertices of poor triangles whose move towards the neighbours' mean does not raise their
+  // smallest angle get a pattern search over their patch. Mutation check (search disabled): at
+  // budget 300 the smallest angle is 18.27 degrees instead of 21.74, at budget 600 two triangles
+  // stay under 30 degrees instead of none.
+  const LabelImage img = island_under_layer();
+  const TriSurface input = extract(img, 3).surface;
+  const SurfaceProjection on_input(input);
+  auto angles = [&](int budget, double& smallest, std::size_t& under_30) {
+    const RemeshResult r = remesh(input, on_input, budget, img.spacing.norm());
+    EXPECT_EQ(r.surface.points.size(), static_cast<std::size_t>(budget));
+    EXPECT_TRUE(r.checks.valid()) << "budget " << budget;
+    smallest = 180.0;
+    under_30 = 0;
+    for (const auto& t : r.surface.triangles) {
+      const auto& p = r.surface.points;
+      const double a = min_angle(p[t[0]], p[t[1]], p[t[2]]) * 180.0 / M_PI;
+      smallest = std::min(smallest, a);
+      under_30 += a < 30.0;
+    }
+  };
+  double smallest = 0.0;
+  std::size_t under_30 = 0;
+  angles(300, smallest, under_30);
+  EXPECT_GT(smallest, kPolishedMinAngleDeg);
+  angles(600, smallest, under_30);
+  EXPECT_EQ(under_30, 0u);
+}

@@ -207,4 +207,9 @@ constexpr double kLockingFreeRel = 0.15;
 /// stuck junction edges, 11.2-13.5 without it; 15 separates the two.
 constexpr double kGradedLoopMinAngleDeg = 15.0;
 
+/// Smallest angle of the whole remeshed island_under_layer() at budget 300: measured 21.74
+/// degrees with the pattern search of the angle smoothing (mesher/remesh_sweeps.cpp), 18.27
+/// without it; 20 separates the two.
+constexpr double kPolishedMinAngleDeg = 20.0;
+
 }  // namespace tissuemesh::test
