@@ -236,11 +236,14 @@ double RemeshComplex::shorter_curve_edge(int v, const Vector3d& p) const {
   return m;
 }
 
-bool RemeshComplex::tangential_target(int v, const Vector3d& goal, Vector3d& target) const {
+RemeshComplex::Vector3d RemeshComplex::vertex_normal(int v) const {
   Vector3d n = Vector3d::Zero();
   for (int t : vt_[v]) n += area_vector(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]);
-  if (n.norm() == 0.0) return false;
-  n.normalize();
+  return n.norm() == 0.0 ? n : Vector3d(n.normalized());
+}
+
+bool RemeshComplex::tangential_target(int v, const Vector3d& n, const Vector3d& goal, Vector3d& target) const {
+  if (n.isZero()) return false;
   const Vector3d d = goal - x_[v];
   Vector3d n_ref;
   target = proj_.onto_patch(owner_[v], x_[v] + d - n.dot(d) * n, &n_ref);

@@ -84,8 +84,8 @@ class RemeshComplex {
   /// Enters every edge between two junction vertices that is shorter than `below` times h at its
   /// midpoint into the size cap (header comment); edges entered before stay. Call once the
   /// collapses have converged, so that the short edges left are the ones the corners and guards
-  /// keep. Returns the number entered.
-  std::size_t grade_stuck_edges(double below);
+  /// keep.
+  void grade_stuck_edges(double below);
 
   /// Collapses the relatively shortest or splits the relatively longest edges until the vertex
   /// count is `target`; false when it cannot get there (every candidate refused, even with the
@@ -138,10 +138,15 @@ class RemeshComplex {
   /// True when a triangle of created_ would intersect another of them or a live triangle not in
   /// `replaced` (the ones the operation removes or changes).
   bool would_intersect(const std::vector<int>& replaced);
+  /// Area-weighted unit normal of v's triangles; zero when they have none.
+  Vector3d vertex_normal(int v) const;
   /// Where a surface vertex v moving towards `goal` lands: the tangential part of the move (in
-  /// the plane of v's area-weighted normal) projected onto v's patch; false when v's triangles
-  /// have no normal or the projection lands on the far side of a thin sheet.
-  bool tangential_target(int v, const Vector3d& goal, Vector3d& target) const;
+  /// the plane of v's normal `n`, vertex_normal(v)) projected onto v's patch; false when v's
+  /// triangles have no normal or the projection lands on the far side of a thin sheet.
+  bool tangential_target(int v, const Vector3d& n, const Vector3d& goal, Vector3d& target) const;
+  bool tangential_target(int v, const Vector3d& goal, Vector3d& target) const {
+    return tangential_target(v, vertex_normal(v), goal, target);
+  }
   /// Moves v to p if the normal, shape and intersection guards allow it (header comment).
   bool try_move(int v, const Vector3d& p);
   /// Rebuilds the grid if needed and applies `operation(a, b)` (true: it changed the mesh) to

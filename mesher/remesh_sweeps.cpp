@@ -129,10 +129,8 @@ std::size_t RemeshComplex::smooth_poor(double min_angle_rad) {
 }
 
 bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
-  Vector3d n = Vector3d::Zero();
-  for (int t : vt_[v]) n += area_vector(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]);
-  if (n.norm() == 0.0) return false;
-  n.normalize();
+  const Vector3d n = vertex_normal(v);
+  if (n.isZero()) return false;
   const Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
   double step = std::numeric_limits<double>::infinity();
   for (int w : nb) step = std::min(step, (x_[w] - x_[v]).norm());
@@ -145,7 +143,7 @@ bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
     for (int k = 0; k < 8; ++k) {
       const double a = k * M_PI / 4.0;
       Vector3d p;
-      if (!tangential_target(v, best + step * (std::cos(a) * t1 + std::sin(a) * t2), p)) continue;
+      if (!tangential_target(v, n, best + step * (std::cos(a) * t1 + std::sin(a) * t2), p)) continue;
       const double angle = ring_min_angle(v, p);
       if (angle > best_angle) best = p, best_angle = angle;
     }
@@ -153,8 +151,7 @@ bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
   return best_angle > before && try_move(v, best);
 }
 
-std::size_t RemeshComplex::grade_stuck_edges(double below) {
-  std::size_t n = 0;
+void RemeshComplex::grade_stuck_edges(double below) {
   for (const auto& e : edges()) {
     if (kind_[e[0]] == Kind::Surface || kind_[e[1]] == Kind::Surface) continue;
     const Vector3d m = 0.5 * (x_[e[0]] + x_[e[1]]);
@@ -162,10 +159,8 @@ std::size_t RemeshComplex::grade_stuck_edges(double below) {
     if (length < below * h(m)) {
       // Reach up to twice L: the budget rescaling may still grow L.
       cap_.add(m, length, 2.0 * L);
-      ++n;
     }
   }
-  return n;
 }
 
 bool RemeshComplex::match_count(std::size_t target) {
