@@ -38,6 +38,9 @@ std::size_t absorb_once(LabelImage& ids, std::size_t min_voxels) {
         if (id != own) ++votes[id];
       }
     }
+    // Every neighbour took this island's id earlier in the pass (its shell was an island too):
+    // it is part of the region around it now.
+    if (votes.empty()) continue;
     std::int32_t best = 0;
     std::size_t most = 0;
     for (const auto& [id, count] : votes)

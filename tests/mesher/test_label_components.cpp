@@ -109,3 +109,14 @@ TEST(SmallIslands, TheMajorityOfFaceNeighboursWinsAndTheBorderCountsAsOutside) {
   // Tie 3 : 3 between outside and tissue 1: the lower id (outside) wins.
   EXPECT_EQ(img.at(0, 0, 0), 0);
 }
+
+TEST(SmallIslands, AnIslandWhoseSmallShellTookItsIdStaysTissue) {
+  // A one-voxel tissue-2 island inside a 26-voxel shell of tissue 1, inside tissue 2. The shell
+  // (lower id) goes first and becomes tissue 2, so every neighbour of the inner voxel is then of
+  // its own tissue: it is part of the surrounding tissue now and must not become outside.
+  LabelImage img = block_of(2, 9);
+  fill(img, 1, 3, 6, 3, 6, 3, 6);
+  fill(img, 2, 4, 5, 4, 5, 4, 5);
+  absorb_small_islands(img, 30);
+  for (std::size_t v = 0; v < img.labels.size(); ++v) EXPECT_EQ(img.labels[v], 2) << "voxel " << v;
+}
