@@ -78,8 +78,11 @@ class RemeshComplex {
   void relax();
 
   /// Angle-improving smoothing of the vertices of triangles with an angle under `min_angle_rad`
-  /// (header comment); returns the number of vertices moved.
-  std::size_t smooth_poor(double min_angle_rad);
+  /// (header comment); returns the number of vertices moved and appends them to `moved`.
+  std::size_t smooth_poor(double min_angle_rad, std::vector<int>& moved);
+  /// Tries the flip of every edge of the triangles around `vertices` (after they moved: only those
+  /// triangles' angles changed, so only their edges can have become flippable); returns the flips.
+  std::size_t flip_around(const std::vector<int>& vertices);
 
   /// Enters every edge between two junction vertices that is shorter than `below` times h at its
   /// midpoint into the size cap (header comment); edges entered before stay. Call once the

@@ -45,6 +45,20 @@ std::size_t RemeshComplex::flip_all() {
   return sweep_edges([this](int a, int b) { return try_flip(a, b); });
 }
 
+std::size_t RemeshComplex::flip_around(const std::vector<int>& vertices) {
+  std::vector<std::array<int, 2>> candidates;
+  for (int v : vertices)
+    for (int t : vt_[v])
+      for (int i = 0; i < 3; ++i) candidates.push_back({std::min(tri_[t][i], tri_[t][(i + 1) % 3]),
+                                                      std::max(tri_[t][i], tri_[t][(i + 1) % 3])});
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  std::size_t n = 0;
+  for (const auto& e : candidates)
+    if (edge_exists(e[0], e[1]) && try_flip(e[0], e[1])) ++n;
+  return n;
+}
+
 void RemeshComplex::relax() {
   rebuild_grid();
   std::vector<int> nb;
@@ -83,7 +97,7 @@ void RemeshComplex::relax() {
   }
 }
 
-std::size_t RemeshComplex::smooth_poor(double min_angle_rad) {
+std::size_t RemeshComplex::smooth_poor(double min_angle_rad, std::vector<int>& moved_vertices) {
   rebuild_grid();
   std::vector<char> todo(x_.size(), 0);
   for (std::size_t t = 0; t < tri_.size(); ++t)
@@ -124,6 +138,7 @@ std::size_t RemeshComplex::smooth_poor(double min_angle_rad) {
     }
     if (!done && kind_[v] == Kind::Surface) done = search_min_angle(v, nb);
     moved += done;
+    if (done) moved_vertices.push_back(v);
   }
   return moved;
 }
