@@ -488,7 +488,9 @@ bool RemeshComplex::try_flip(int a, int b) {
   };
   const int c = third(t1, a, b), d = third(t2, a, b);
   if (c == d || edge_exists(c, d)) return false;
-  if (vt_[a].size() <= 3 || vt_[b].size() <= 3) return false;
+  // A flip takes a triangle from a and from b; neither may be left with three (such a vertex
+  // bounds its triangles' smallest angle by half that of the triangle around them).
+  if (vt_[a].size() <= 4 || vt_[b].size() <= 4) return false;
   const Vector3d &pa = x_[a], &pb = x_[b], &pc = x_[c], &pd = x_[d];
   // Delaunay: flip when the opposite angles sum beyond pi, i.e. the new diagonal gives the
   // larger smallest angle.

@@ -9,7 +9,8 @@
 //             the link condition (the endpoints share exactly the opposite vertices of the edge's
 //             triangles) keeps every tissue's boundary a closed manifold;
 //   flip      non-junction edges to the Delaunay diagonal of their two triangles (same patch),
-//             when the two new triangles do not fold against each other;
+//             when the two new triangles do not fold against each other and neither endpoint is
+//             left with three triangles;
 //   relax     density-weighted centroidal relaxation: a surface vertex moves to the centroid of its
 //             one-ring weighted by area / h^2 (a discrete centroidal Voronoi step, Lloyd on the
 //             surface), tangentially, then onto its patch of the reference surface; a curve

@@ -266,3 +266,24 @@ TEST(SurfaceRemesh, AngleSmoothingSearchesThePatchForTheBestPosition) {
   angles(400, smallest, under_30);
   EXPECT_GT(smallest, kRepeatedPolishMinAngleDeg);
 }
+
+TEST(SurfaceRemesh, FlipsLeaveNoVertexWithThreeTriangles) {
+  // A vertex inside a patch with three triangles bounds their smallest angle by half the smallest
+  // angle of the triangle around them; a flip that would leave one is refused (the phantom's 2.1K
+  // minimum angle was such a vertex: 14.8 degrees, 23.6 since). Mutation check (flips allowed down
+  // to three triangles): one such vertex at budget 200, smallest angle 16.00 degrees.
+  const LabelImage img = island_under_layer();
+  const TriSurface input = extract(img, 3).surface;
+  const SurfaceProjection on_input(input);
+  const RemeshResult r = remesh(input, on_input, 200, img.spacing.norm());
+  ASSERT_TRUE(r.checks.valid());
+  std::vector<int> triangles_at(r.surface.points.size(), 0);
+  for (const auto& t : r.surface.triangles)
+    for (int v : t) ++triangles_at[static_cast<std::size_t>(v)];
+  std::vector<char> on_junction(r.surface.points.size(), 0);
+  for (const auto& j : r.surface.junctions)
+    for (int v : j) on_junction[static_cast<std::size_t>(v)] = 1;
+  int three = 0;
+  for (std::size_t v = 0; v < triangles_at.size(); ++v) three += triangles_at[v] == 3 && !on_junction[v];
+  EXPECT_EQ(three, 0);
+}
