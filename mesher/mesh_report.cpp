@@ -290,6 +290,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                        {"open_edges", t.open_edges},
                        {"nonmanifold_edges", t.nonmanifold_edges},
                        {"misoriented_edges", t.misoriented_edges},
+                       {"nonmanifold_vertices", t.nonmanifold_vertices},
                        {"intersecting_triangle_pairs", t.intersecting_pairs},
                        {"enclosed_volume_mm3", t.volume_mm3},
                        {"voxel_volume_mm3", voxel_volume_of(t, r.voxel_volume_mm3)},
@@ -353,11 +354,12 @@ std::string surface_job_text(const SurfaceJobResult& r) {
   o << "\nTable 1 (triangle quality)    avg min angle [deg]  min angle [deg]  P30 [%]   Q_av    Q_min   mean edge [mm]\n";
   if (r.remesh) o << table1_row("extracted", r.extracted_quality);
   o << table1_row(r.remesh ? "remeshed" : "extracted", r.quality) << "\n";
-  o << "surface checks      vertices  triangles  closed+oriented  intersecting pairs  volume [mm^3]  voxel volume [mm^3]  error [%]\n";
+  o << "surface checks      vertices  triangles  closed+oriented+manifold  intersecting pairs  volume [mm^3]  voxel volume [mm^3]  error [%]\n";
   for (const auto& t : r.checks.tissues) {
     char line[256];
-    std::snprintf(line, sizeof line, "  %-16s  %8zu  %9zu  %15s  %18lld  %13.1f  %19.1f  %9.3f\n", t.name.c_str(),
-                  t.vertices, t.triangles, t.closed_and_oriented() ? "yes" : "NO", t.intersecting_pairs, t.volume_mm3,
+    std::snprintf(line, sizeof line, "  %-16s  %8zu  %9zu  %24s  %18lld  %13.1f  %19.1f  %9.3f\n", t.name.c_str(),
+                  t.vertices, t.triangles, t.closed_and_oriented() && t.nonmanifold_vertices == 0 ? "yes" : "NO",
+                  t.intersecting_pairs, t.volume_mm3,
                   voxel_volume_of(t, r.voxel_volume_mm3), volume_error_percent(t, r.voxel_volume_mm3));
     o << line;
   }

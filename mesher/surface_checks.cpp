@@ -41,18 +41,46 @@ void count_edges(const std::vector<std::array<int, 3>>& tris, TissueSurfaceCheck
   }
 }
 
-/// Intersecting pairs of a closed oriented triangle set, as positions in `polygons`; false when
-/// the set is not a valid polygon mesh (then nothing is checked).
-bool intersecting_pairs(const std::vector<Kernel::Point_3>& points, const std::vector<std::array<int, 3>>& polygons,
+/// Vertices 0..n-1 of a closed, oriented triangle set (count_edges found nothing) whose triangles
+/// form more than one fan: the boundary touches itself there. Each triangle (a, b, c) adds the link
+/// edge b -> c at a (and so on); with every edge used once in each direction the link edges at a
+/// vertex form disjoint cycles, and a manifold vertex has exactly one. (This replaces CGAL's
+/// is_polygon_soup_a_polygon_mesh, which tests the same plus what count_edges already did, at a
+/// measured 0.9 s of the 1.8 s a check of the 21K phantom's 409K extracted triangles took.)
+std::size_t count_nonmanifold_vertices(const std::vector<std::array<int, 3>>& tris, std::size_t n) {
+  std::vector<std::size_t> start(n + 1, 0);
+  for (const auto& t : tris)
+    for (int v : t) ++start[static_cast<std::size_t>(v) + 1];
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<std::array<int, 2>> link(start[n]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (const auto& t : tris)
+    for (int k = 0; k < 3; ++k) link[fill[static_cast<std::size_t>(t[k])]++] = {t[(k + 1) % 3], t[(k + 2) % 3]};
+  std::size_t bad = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    const auto first = link.begin() + static_cast<std::ptrdiff_t>(start[v]), last = link.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+    if (first == last) continue;
+    std::size_t steps = 1;
+    for (int at = (*first)[1]; at != (*first)[0] && steps <= start[v + 1] - start[v]; ++steps) {
+      const auto next = std::find_if(first, last, [at](const std::array<int, 2>& e) { return e[0] == at; });
+      if (next == last) break;
+      at = (*next)[1];
+    }
+    bad += steps != start[v + 1] - start[v];
+  }
+  return bad;
+}
+
+/// Intersecting pairs of a closed, oriented, vertex-manifold triangle set, as positions in
+/// `polygons` (a degenerate triangle f is reported as the pair (f, f)).
+void intersecting_pairs(const std::vector<Kernel::Point_3>& points, const std::vector<std::array<int, 3>>& polygons,
                         std::vector<std::pair<int, int>>& out) {
-  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return false;
   Mesh mesh;
   // Faces are created in polygon order, so face index i is polygons[i].
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
   PMP::self_intersections(faces(mesh), mesh, std::back_inserter(pairs));
   for (const auto& [f, g] : pairs) out.emplace_back(static_cast<int>(f.idx()), static_cast<int>(g.idx()));
-  return true;
 }
 
 /// Per tissue: the check without intersections, its outward triangles and their global ids.
@@ -87,8 +115,10 @@ TissueSurfaceCheck tissue_check(const TriSurface& s, int id, std::vector<std::pa
     }
     for (auto& t : tris)
       for (int& v : t) v = local[v];
-    std::vector<std::pair<int, int>> found;
-    if (intersecting_pairs(points, tris, found)) {
+    c.nonmanifold_vertices = count_nonmanifold_vertices(tris, points.size());
+    if (c.nonmanifold_vertices == 0) {
+      std::vector<std::pair<int, int>> found;
+      intersecting_pairs(points, tris, found);
       c.intersecting_pairs = static_cast<long long>(found.size());
       if (pairs)
         for (const auto& [a, b] : found) pairs->emplace_back(ids[static_cast<std::size_t>(a)], ids[static_cast<std::size_t>(b)]);

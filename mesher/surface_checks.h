@@ -4,9 +4,12 @@
 //   closed      every edge is used by exactly two of its triangles, once in each direction (so the
 //               boundary is also consistently oriented); edges used once are holes, more than twice
 //               non-manifold, twice in the same direction misoriented;
+//   manifold    (when closed) every vertex's triangles form one fan; a vertex with two or more
+//               fans is where the boundary touches itself;
 //   intersecting  pairs of its triangles that intersect other than along shared edges/vertices
-//               (CGAL Polygon_mesh_processing::self_intersections, exact predicates), counted
-//               only when the boundary is closed and a valid polygon mesh;
+//               (CGAL Polygon_mesh_processing::self_intersections, exact predicates; a degenerate
+//               triangle, collinear corners, counts as a pair with itself), counted only when the
+//               boundary is closed and vertex-manifold;
 //   volume      enclosed volume by the divergence theorem, mm^3 (positive when outward).
 // Whole complex: triangles stored twice (the same three vertices), and junction polyline edges
 // that are not triangle edges where >= 3 triangles meet.
@@ -28,7 +31,8 @@ struct TissueSurfaceCheck {
   std::size_t open_edges = 0;         ///< used by one triangle
   std::size_t nonmanifold_edges = 0;  ///< used by more than two
   std::size_t misoriented_edges = 0;  ///< used twice in the same direction
-  long long intersecting_pairs = -1;  ///< -1 = not checked (boundary not a closed polygon mesh)
+  std::size_t nonmanifold_vertices = 0;  ///< closed boundary: vertices with more than one fan
+  long long intersecting_pairs = -1;  ///< -1 = not checked (not closed, or a non-manifold vertex)
   double volume_mm3 = 0.0;
 
   bool closed_and_oriented() const { return open_edges == 0 && nonmanifold_edges == 0 && misoriented_edges == 0; }

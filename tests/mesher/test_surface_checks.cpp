@@ -1,0 +1,132 @@
+// The surface checks themselves (issue #5 acceptance instruments): each defect they name, built
+// by hand on tetrahedra, is found and counted, and a sound surface passes with its exact volume.
+#include "mesher/surface_checks.h"
+#include "support/tolerances.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+
+using namespace tissuemesh;
+using namespace tissuemesh::test;
+
+namespace {
+
+/// Adds the boundary of the tetrahedron on s.points[v[0..3]] as tissue `id` against the outside:
+/// its outward faces, stored reversed with labels {0, id} (the TriSurface convention: the normal
+/// points from the outside into the tissue).
+void add_tetrahedron(TriSurface& s, const std::array<int, 4>& v, int id) {
+  const auto& p = s.points;
+  const double orientation = (p[v[1]] - p[v[0]]).dot((p[v[2]] - p[v[0]]).cross(p[v[3]] - p[v[0]]));
+  // Outward faces of a positively oriented tetrahedron (0, 1, 2, 3).
+  std::array<std::array<int, 3>, 4> faces{{{v[0], v[2], v[1]}, {v[0], v[1], v[3]}, {v[0], v[3], v[2]}, {v[1], v[2], v[3]}}};
+  for (auto& f : faces) {
+    if (orientation < 0.0) std::swap(f[1], f[2]);
+    std::swap(f[1], f[2]);  // stored inward: from the outside (0) into the tissue
+    s.triangles.push_back(f);
+    s.labels.push_back({0, id});
+  }
+}
+
+/// One tissue: the unit corner tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1), volume 1/6 mm^3.
+TriSurface corner_tetrahedron() {
+  TriSurface s;
+  s.tissue_names = {"a"};
+  s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  add_tetrahedron(s, {0, 1, 2, 3}, 1);
+  return s;
+}
+
+}  // namespace
+
+TEST(SurfaceChecks, ClosedTetrahedronPassesWithItsExactVolume) {
+  const SurfaceCheckReport r = check_surface(corner_tetrahedron());
+  ASSERT_EQ(r.tissues.size(), 1u);
+  const TissueSurfaceCheck& t = r.tissues[0];
+  EXPECT_TRUE(r.valid());
+  EXPECT_TRUE(t.closed_and_oriented());
+  EXPECT_EQ(t.nonmanifold_vertices, 0u);
+  EXPECT_EQ(t.intersecting_pairs, 0);
+  EXPECT_EQ(t.vertices, 4u);
+  EXPECT_EQ(t.triangles, 4u);
+  // Divergence theorem on exact small coordinates: round-off only.
+  EXPECT_NEAR(t.volume_mm3, 1.0 / 6.0, kRelativeRoundoff / 6.0);
+}
+
+TEST(SurfaceChecks, MissingTriangleLeavesThreeOpenEdges) {
+  TriSurface s = corner_tetrahedron();
+  s.triangles.pop_back();
+  s.labels.pop_back();
+  const SurfaceCheckReport r = check_surface(s);
+  EXPECT_EQ(r.tissues[0].open_edges, 3u);
+  EXPECT_EQ(r.tissues[0].intersecting_pairs, -1);  // not checked on an open boundary
+  EXPECT_FALSE(r.valid());
+}
+
+TEST(SurfaceChecks, ReversedTriangleMisorientsItsThreeEdges) {
+  TriSurface s = corner_tetrahedron();
+  std::swap(s.triangles[0][1], s.triangles[0][2]);
+  const SurfaceCheckReport r = check_surface(s);
+  EXPECT_EQ(r.tissues[0].misoriented_edges, 3u);
+  EXPECT_EQ(r.tissues[0].open_edges, 0u);
+  EXPECT_FALSE(r.valid());
+}
+
+TEST(SurfaceChecks, TetrahedraTouchingAtOneVertexAreNotManifoldThere) {
+  // Two tetrahedra of one tissue, point-reflected through the shared vertex 0: every edge is used
+  // twice in opposite directions, but vertex 0 has two fans.
+  TriSurface s = corner_tetrahedron();
+  s.points.insert(s.points.end(), {{-1, 0, 0}, {0, -1, 0}, {0, 0, -1}});
+  add_tetrahedron(s, {0, 4, 5, 6}, 1);
+  const SurfaceCheckReport r = check_surface(s);
+  const TissueSurfaceCheck& t = r.tissues[0];
+  EXPECT_TRUE(t.closed_and_oriented());
+  EXPECT_EQ(t.nonmanifold_vertices, 1u);
+  EXPECT_EQ(t.intersecting_pairs, -1);
+  EXPECT_FALSE(r.valid());
+  // Apart from the touching vertex the two are sound: the volume is both tetrahedra's.
+  EXPECT_NEAR(t.volume_mm3, 2.0 / 6.0, kRelativeRoundoff);
+}
+
+TEST(SurfaceChecks, InterpenetratingTetrahedraIntersect) {
+  TriSurface s = corner_tetrahedron();
+  for (int k = 0; k < 4; ++k) s.points.push_back(s.points[static_cast<std::size_t>(k)] + Eigen::Vector3d(0.2, 0.2, 0.2));
+  add_tetrahedron(s, {4, 5, 6, 7}, 1);
+  const SurfaceCheckReport r = check_surface(s);
+  EXPECT_EQ(r.tissues[0].nonmanifold_vertices, 0u);
+  EXPECT_GT(r.tissues[0].intersecting_pairs, 0);
+  EXPECT_FALSE(r.valid());
+}
+
+TEST(SurfaceChecks, CollinearTriangleIsReportedAsIntersectingItself) {
+  // The apex moved onto the midpoint of edge 0-1: triangle (0, 1, 3) is a segment.
+  TriSurface s = corner_tetrahedron();
+  s.points[3] = {0.5, 0.0, 0.0};
+  std::vector<int> bad;
+  const SurfaceCheckReport r = check_surface(s, &bad);
+  EXPECT_GT(r.tissues[0].intersecting_pairs, 0);
+  EXPECT_FALSE(r.valid());
+  int collinear = -1;
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    auto v = s.triangles[t];
+    std::sort(v.begin(), v.end());
+    if (v == std::array<int, 3>{0, 1, 3}) collinear = static_cast<int>(t);
+  }
+  ASSERT_GE(collinear, 0);
+  EXPECT_TRUE(std::binary_search(bad.begin(), bad.end(), collinear));
+}
+
+TEST(SurfaceChecks, TriangleStoredTwiceAndJunctionOffTheTrianglesAreCounted) {
+  TriSurface s = corner_tetrahedron();
+  s.triangles.push_back({s.triangles[0][1], s.triangles[0][2], s.triangles[0][0]});  // same vertices, rotated
+  s.labels.push_back({0, 1});
+  EXPECT_EQ(check_surface(s).duplicate_triangles, 1u);
+
+  TriSurface j = corner_tetrahedron();
+  j.junctions = {{0, 1}};  // an edge where only two triangles meet
+  const SurfaceCheckReport r = check_surface(j);
+  EXPECT_EQ(r.junction_edges, 1u);
+  EXPECT_EQ(r.junction_edges_off_junction, 1u);
+  EXPECT_FALSE(r.valid());
+}
