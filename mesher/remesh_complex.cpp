@@ -25,11 +25,21 @@ constexpr double kFlipFlatCos = 0.906;
 constexpr double kGridDrift = 1.5;
 /// The approximation bound is at least this fraction of the edge length L.
 constexpr double kDeviationPerEdge = 0.25;
-/// Size cap around stuck edges (mesher/graded_size_cap.h): 1.93 gives the isosceles triangle on a
-/// stuck edge an apex angle of 30 degrees (the P30 threshold); the size then grows by 0.4 mm per
-/// mm, so neighbouring triangles differ in size by a factor 1.4 at most.
-constexpr double kCapFactor = 1.93;
+/// Size cap around stuck edges (mesher/graded_size_cap.h): h = 1.5 times the stuck edge there, so
+/// an isosceles triangle on it whose sides reach the split threshold 4/3 h still has an apex angle
+/// of 2 asin(1 / (2 * 1.5 * 4/3)) = 29 degrees (1.93 gave 30 degrees only for sides of exactly h);
+/// the size then grows by 0.4 mm per mm, so neighbouring triangles differ in size by a factor 1.4
+/// at most. Measured on the phantom (angles under 30 degrees at 21K / 2.1K, 2.1K minimum angle):
+/// 1.93: 8 / 27, 22.5; 1.7: 4 / 28, 21.5; 1.5: 7 / 12, 25.8; 1.45: 10 / 13, 26.4. The counts
+/// move by a few angles between neighbouring factors: this is a tuned value, not a threshold.
+constexpr double kCapFactor = 1.5;
 constexpr double kCapGradation = 0.4;
+/// A closed junction loop keeps at least this many edges. Three would do topologically, but a loop
+/// only a few voxel faces long (a sub-resolution contact, kept at its voxel corners by the
+/// extraction) then becomes one triangle inscribed in a rectangle, obtuse with two angles under 30
+/// degrees (measured on the 21K phantom's 1.4 x 1.5 mm fgt|skin contact: 29.1, 29.1, 121.8);
+/// four vertices evenly spaced along it make a near-square of two near-right triangles.
+constexpr int kMinLoopEdges = 4;
 
 Eigen::AlignedBox3d box_of(const TrianglePoints& p) {
   Eigen::AlignedBox3d b(p[0]);
@@ -365,7 +375,7 @@ bool RemeshComplex::collapse_allowed(int a, int b, const std::vector<int>& ts) c
   if (kind_[a] == Kind::Surface && curve >= 0) return false;
   if (kind_[a] == Kind::Curve) {
     if (curve != owner_[a]) return false;
-    if (curve_edges_[curve] <= (curve_closed_[curve] ? 3 : 1)) return false;
+    if (curve_edges_[curve] <= (curve_closed_[curve] ? kMinLoopEdges : 1)) return false;
   }
   // Link condition: the common neighbours are exactly the opposite vertices of the edge's triangles.
   std::vector<int> na, nb, common;
