@@ -137,12 +137,18 @@ bool SurfaceCheckReport::valid() const {
 
 SurfaceCheckReport check_surface(const TriSurface& s, std::vector<int>* intersecting) {
   SurfaceCheckReport report;
-  std::vector<std::pair<int, int>> pairs;
-  for (int id = 1; id <= static_cast<int>(s.tissue_names.size()); ++id)
-    report.tissues.push_back(tissue_check(s, id, intersecting ? &pairs : nullptr));
+  // Tissues are independent: checked in parallel (the fat's boundary dominates, so two threads).
+  const int tissues = static_cast<int>(s.tissue_names.size());
+  report.tissues.resize(static_cast<std::size_t>(tissues));
+  std::vector<std::vector<std::pair<int, int>>> pairs(static_cast<std::size_t>(tissues));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(2)
+  for (int id = 1; id <= tissues; ++id)
+    report.tissues[static_cast<std::size_t>(id - 1)] =
+        tissue_check(s, id, intersecting ? &pairs[static_cast<std::size_t>(id - 1)] : nullptr);
   if (intersecting) {
     intersecting->clear();
-    for (const auto& [a, b] : pairs) intersecting->insert(intersecting->end(), {a, b});
+    for (const auto& tissue_pairs : pairs)
+      for (const auto& [a, b] : tissue_pairs) intersecting->insert(intersecting->end(), {a, b});
     std::sort(intersecting->begin(), intersecting->end());
     intersecting->erase(std::unique(intersecting->begin(), intersecting->end()), intersecting->end());
   }

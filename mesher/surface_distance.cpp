@@ -1,18 +1,36 @@
 #include "mesher/surface_distance.h"
 
+#include "mesher/face_key.h"
+
 #include <algorithm>
+#include <cstdint>
+#include <vector>
 
 namespace tissuemesh {
 namespace {
 
 double max_distance(const TriSurface& from, const SurfaceProjection& to) {
-  double d = 0.0;
-  for (const Eigen::Vector3d& p : from.points) d = std::max(d, to.distance(p));
+  // The samples: vertices, triangle centroids and edge midpoints (each edge once).
+  std::vector<Eigen::Vector3d> samples(from.points);
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * from.triangles.size());
   for (const std::array<int, 3>& t : from.triangles) {
     const Eigen::Vector3d &a = from.points[t[0]], &b = from.points[t[1]], &c = from.points[t[2]];
-    d = std::max({d, to.distance((a + b + c) / 3.0), to.distance(0.5 * (a + b)), to.distance(0.5 * (b + c)),
-                  to.distance(0.5 * (c + a))});
+    samples.push_back((a + b + c) / 3.0);
+    for (int e = 0; e < 3; ++e) edges.push_back(edge_key(t[e], t[(e + 1) % 3]));
   }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  for (const std::uint64_t e : edges) {
+    const auto a = static_cast<std::size_t>(e >> 32), b = static_cast<std::size_t>(e & 0xffffffffu);
+    samples.push_back(0.5 * (from.points[a] + from.points[b]));
+  }
+  // Queries are independent (the projection's trees are built in its constructor): two threads;
+  // a max is exact, so the result does not depend on the split.
+  double d = samples.empty() ? 0.0 : to.distance(samples.front());
+  const auto n = static_cast<std::ptrdiff_t>(samples.size());
+#pragma omp parallel for schedule(static) num_threads(2) reduction(max : d)
+  for (std::ptrdiff_t i = 0; i < n; ++i) d = std::max(d, to.distance(samples[static_cast<std::size_t>(i)]));
   return d;
 }
 
