@@ -196,17 +196,29 @@ bool RemeshComplex::move_keeps_normals(int v, const Vector3d& p, const std::vect
   return true;
 }
 
-bool RemeshComplex::keeps_represented(int v, const Vector3d& p) const {
+double RemeshComplex::ring_distance(int r, int w, int v, const Vector3d& p) const {
+  double d = INFINITY;
+  for (int t : vt_[w]) {
+    Vector3d q[3];
+    for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == v ? p : x_[tri_[t][i]];
+    d = std::min(d, point_triangle_distance(reference_[r], q[0], q[1], q[2]));
+    if (d <= deviation()) break;
+  }
+  return d;
+}
+
+bool RemeshComplex::keeps_represented(int v, const Vector3d& p, std::vector<std::array<int, 2>>* handoff) const {
   if (!(deviation() > 0.0) || represents_[v].empty()) return true;
+  std::vector<int> nb;
+  if (handoff) {
+    handoff->clear();
+    neighbours(v, nb);
+  }
   for (int r : represents_[v]) {
-    double d = INFINITY;
-    for (int t : vt_[v]) {
-      Vector3d q[3];
-      for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == v ? p : x_[tri_[t][i]];
-      d = std::min(d, point_triangle_distance(reference_[r], q[0], q[1], q[2]));
-      if (d <= deviation()) break;
-    }
-    if (d > deviation()) return false;
+    if (ring_distance(r, v, v, p) <= deviation()) continue;
+    const auto w = std::find_if(nb.begin(), nb.end(), [&](int u) { return ring_distance(r, u, v, p) <= deviation(); });
+    if (w == nb.end()) return false;
+    handoff->push_back({r, *w});
   }
   return true;
 }
@@ -260,10 +272,15 @@ bool RemeshComplex::tangential_target(int v, const Vector3d& n, const Vector3d& 
   return n_ref.dot(n) > 0.0;  // else the far side of a thin sheet: stay
 }
 
-bool RemeshComplex::try_move(int v, const Vector3d& p) {
-  if (!move_keeps_normals(v, p, vt_[v], {}) || !keeps_represented(v, p)) return false;
+bool RemeshComplex::try_move(int v, const Vector3d& p, bool handoff) {
+  std::vector<std::array<int, 2>> handed;
+  if (!move_keeps_normals(v, p, vt_[v], {}) || !keeps_represented(v, p, handoff ? &handed : nullptr)) return false;
   collect_moved(vt_[v], {}, v, p, v);
   if (would_intersect(vt_[v])) return false;
+  for (const auto& [r, w] : handed) {
+    represents_[v].erase(std::find(represents_[v].begin(), represents_[v].end(), r));
+    represents_[w].push_back(r);
+  }
   x_[v] = p;
   for (int t : vt_[v]) index_triangle(t);
   return true;

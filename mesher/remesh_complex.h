@@ -27,7 +27,8 @@
 // stays intersection free at any budget: thin sheets keep the vertices they need. Shape: each
 // vertex carries the input vertices collapsed into it, and a collapse or relaxation move is refused
 // when one of them would end up farther than the approximation bound (max(max_deviation_mm, L/4))
-// from the triangles around it, or when a changed triangle would leave its patch by more than that
+// from the triangles around it (an angle-smoothing move may instead hand it to a neighbour whose
+// triangles are within the bound), or when a changed triangle would leave its patch by more than that
 // bound or face away from it (a triangle bridging the two sides of a thin sheet); split midpoints
 // and relaxed points that would project onto the far side of a thin sheet are refused too.
 // Size near stuck edges: grade_stuck_edges() enters the edges between two junction vertices (curve
@@ -127,8 +128,13 @@ class RemeshComplex {
   /// True when moving v to p turns no triangle of `tris` (skipping `skip`) beyond the limit.
   bool move_keeps_normals(int v, const Vector3d& p, const std::vector<int>& tris, const std::vector<int>& skip) const;
   /// True when every input vertex that v stands for stays within deviation() of v's triangles
-  /// with v moved to p (relaxation must not shave off a tip that collapses left to v).
-  bool keeps_represented(int v, const Vector3d& p) const;
+  /// with v moved to p (relaxation must not shave off a tip that collapses left to v). With
+  /// `handoff`, an input vertex out of v's reach may instead be within deviation() of a
+  /// neighbour w's triangles (v at p): it is listed as {input vertex, w}, for try_move to hand
+  /// it over, so that every input vertex stays within reach of its own vertex's triangles.
+  bool keeps_represented(int v, const Vector3d& p, std::vector<std::array<int, 2>>* handoff = nullptr) const;
+  /// Distance from input vertex r to w's triangles with vertex v moved to p.
+  double ring_distance(int r, int w, int v, const Vector3d& p) const;
 
   /// A triangle an operation would create: vertex ids (a new vertex: an id not yet in use) and points.
   struct NewTriangle {
@@ -152,7 +158,9 @@ class RemeshComplex {
     return tangential_target(v, vertex_normal(v), goal, target);
   }
   /// Moves v to p if the normal, shape and intersection guards allow it (header comment).
-  bool try_move(int v, const Vector3d& p);
+  /// `handoff`: input vertices v stands for may pass to a neighbour (keeps_represented); the
+  /// angle smoothing allows it, so that a vertex next to a junction can move away from it.
+  bool try_move(int v, const Vector3d& p, bool handoff = false);
   /// Rebuilds the grid if needed and applies `operation(a, b)` (true: it changed the mesh) to
   /// every edge that still exists, in edges() order; returns how many changed it.
   template <class EdgeOperation>

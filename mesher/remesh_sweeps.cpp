@@ -131,7 +131,7 @@ std::size_t RemeshComplex::smooth_poor(double min_angle_rad, std::vector<int>& m
       Vector3d p = x_[v] + f * (target - x_[v]);
       if (f != 1.0) p = kind_[v] == Kind::Surface ? proj_.onto_patch(owner_[v], p) : proj_.onto_curve(owner_[v], p);
       if (kind_[v] != Kind::Surface && shorter_curve_edge(v, p) < shorter_curve_edge(v, x_[v])) continue;
-      if (ring_min_angle(v, p) > before && try_move(v, p)) {
+      if (ring_min_angle(v, p) > before && try_move(v, p, true)) {
         done = true;
         break;
       }
@@ -163,7 +163,7 @@ bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
       if (angle > best_angle) best = p, best_angle = angle;
     }
   }
-  return best_angle > before && try_move(v, best);
+  return best_angle > before && try_move(v, best, true);
 }
 
 void RemeshComplex::grade_stuck_edges(double below) {

@@ -215,5 +215,9 @@ constexpr double kPolishedMinAngleDeg = 20.0;
 /// with the angle smoothing repeated until a pass moves nothing (mesher/surface_remesh.cpp), 19.85
 /// with three passes; 21.5 separates the two.
 constexpr double kRepeatedPolishMinAngleDeg = 21.5;
+/// Smallest angle of the remeshed island_under_layer() at budget 200: measured 26.11 degrees when
+/// the angle smoothing may hand input vertices to a neighbour (mesher/remesh_complex.h
+/// keeps_represented), 18.38 when it may not; 22 separates the two.
+constexpr double kHandoffMinAngleDeg = 22.0;
 
 }  // namespace tissuemesh::test
