@@ -29,9 +29,10 @@ constexpr double kDeviationPerEdge = 0.25;
 /// an isosceles triangle on it whose sides reach the split threshold 4/3 h still has an apex angle
 /// of 2 asin(1 / (2 * 1.5 * 4/3)) = 29 degrees (1.93 gave 30 degrees only for sides of exactly h);
 /// the size then grows by 0.4 mm per mm, so neighbouring triangles differ in size by a factor 1.4
-/// at most. Measured on the phantom (angles under 30 degrees at 21K / 2.1K, 2.1K minimum angle):
-/// 1.93: 8 / 27, 22.5; 1.7: 4 / 28, 21.5; 1.5: 7 / 12, 25.8; 1.45: 10 / 13, 26.4. The counts
-/// move by a few angles between neighbouring factors: this is a tuned value, not a threshold.
+/// at most. Measured on the phantom before the smoothing's hand-over (keeps_represented) (angles
+/// under 30 degrees at 21K / 2.1K, 2.1K minimum angle): 1.93: 8 / 27, 22.5; 1.7: 4 / 28, 21.5;
+/// 1.5: 7 / 12, 25.8; 1.45: 10 / 13, 26.4. The counts move by a few angles between neighbouring
+/// factors: this is a tuned value, not a threshold.
 constexpr double kCapFactor = 1.5;
 constexpr double kCapGradation = 0.4;
 /// A closed junction loop keeps at least this many edges. Three would do topologically, but a loop
