@@ -254,7 +254,7 @@ TEST(GradedSizeCap, IsTheFactorTimesTheEdgeAtItsMidpointAndGrowsByTheGradation) 
   EXPECT_EQ(cap.size(), 2u);
 }
 
-TEST(SurfaceRemesh, AngleSmoothingSearchesThePatchForTheBestPosition) {
+TEST(SurfaceRemesh, AngleSmoothingSearchesRepeatsAndHandsOver) {
   // The vertices of poor triangles whose move towards the neighbours' mean does not raise their
   // smallest angle get a pattern search over their patch. Mutation check (search disabled): at
   // budget 300 the smallest angle is 18.27 degrees instead of 21.74, at budget 600 two triangles
@@ -269,6 +269,13 @@ TEST(SurfaceRemesh, AngleSmoothingSearchesThePatchForTheBestPosition) {
   // and a poor triangle's neighbours often have to move first. Mutation check (three passes, the
   // old fixed count): 19.85 degrees at budget 400.
   EXPECT_GT(remeshed_angles(input, on_input, 400, diagonal).smallest, kRepeatedPolishMinAngleDeg);
+  // A vertex next to a junction often stands for input vertices that its own triangles only just
+  // reach (within the approximation bound); moving it away would leave them behind. The angle
+  // smoothing may hand such an input vertex to a neighbour whose triangles reach it. Mutation
+  // check (no hand-over): at budget 200 the smallest angle is 18.38 degrees instead of 26.11, at
+  // budget 450 two triangles stay under 30 degrees instead of none.
+  EXPECT_GT(remeshed_angles(input, on_input, 200, diagonal).smallest, kHandoffMinAngleDeg);
+  EXPECT_EQ(remeshed_angles(input, on_input, 450, diagonal).under_30, 0u);
 }
 
 TEST(SurfaceRemesh, FlipsLeaveNoVertexWithThreeTriangles) {
@@ -290,18 +297,4 @@ TEST(SurfaceRemesh, FlipsLeaveNoVertexWithThreeTriangles) {
   int three = 0;
   for (std::size_t v = 0; v < triangles_at.size(); ++v) three += triangles_at[v] == 3 && !on_junction[v];
   EXPECT_EQ(three, 0);
-}
-
-TEST(SurfaceRemesh, AngleSmoothingMayHandInputVerticesToANeighbour) {
-  // A vertex next to a junction often stands for input vertices that its own triangles only just
-  // reach (within the approximation bound); moving it away would leave them behind. The angle
-  // smoothing may hand such an input vertex to a neighbour whose triangles reach it. Mutation
-  // check (no hand-over): at budget 200 the smallest angle is 18.38 degrees instead of 26.11, at
-  // budget 450 two triangles stay under 30 degrees instead of none.
-  const LabelImage img = island_under_layer();
-  const TriSurface input = extract(img, 3).surface;
-  const SurfaceProjection on_input(input);
-  const double diagonal = img.spacing.norm();
-  EXPECT_GT(remeshed_angles(input, on_input, 200, diagonal).smallest, kHandoffMinAngleDeg);
-  EXPECT_EQ(remeshed_angles(input, on_input, 450, diagonal).under_30, 0u);
 }
