@@ -85,6 +85,11 @@ class RemeshComplex {
   /// Tries the flip of every edge of the triangles around `vertices` (after they moved: only those
   /// triangles' angles changed, so only their edges can have become flippable); returns the flips.
   std::size_t flip_around(const std::vector<int>& vertices);
+  /// Splits the longest edge of each triangle with an angle under `min_angle_rad` when the
+  /// triangles the split makes all have a larger smallest angle than the ones it replaces (a poor
+  /// triangle whose short edge no move can lengthen, e.g. one held by the approximation bound);
+  /// returns the splits and appends the new vertices to `added`.
+  std::size_t split_poor(double min_angle_rad, std::vector<int>& added);
 
   /// Enters every edge between two junction vertices that is shorter than `below` times h at its
   /// midpoint into the size cap (header comment); edges entered before stay. Call once the

@@ -59,6 +59,44 @@ std::size_t RemeshComplex::flip_around(const std::vector<int>& vertices) {
   return n;
 }
 
+std::size_t RemeshComplex::split_poor(double min_angle_rad, std::vector<int>& added) {
+  rebuild_grid();
+  std::vector<std::array<int, 2>> longest;
+  for (std::size_t t = 0; t < tri_.size(); ++t) {
+    if (!tri_alive_[t]) continue;
+    const auto& q = tri_[t];
+    if (!(min_angle(x_[q[0]], x_[q[1]], x_[q[2]]) < min_angle_rad)) continue;
+    int best = 0;
+    for (int i = 1; i < 3; ++i)
+      if ((x_[q[(i + 1) % 3]] - x_[q[i]]).squaredNorm() > (x_[q[(best + 1) % 3]] - x_[q[best]]).squaredNorm()) best = i;
+    longest.push_back({std::min(q[best], q[(best + 1) % 3]), std::max(q[best], q[(best + 1) % 3])});
+  }
+  std::sort(longest.begin(), longest.end());
+  longest.erase(std::unique(longest.begin(), longest.end()), longest.end());
+  std::size_t n = 0;
+  std::vector<int> ts;
+  for (const auto& [a, b] : longest) {
+    if (!edge_exists(a, b)) continue;
+    edge_triangles(a, b, ts);
+    // The split point as split() computes it, and the smallest angle before and after.
+    const int curve = curve_of_edge(a, b);
+    const Vector3d mid = 0.5 * (x_[a] + x_[b]);
+    const Vector3d m = curve < 0 ? proj_.onto_patch(patch_[ts[0]], mid) : proj_.onto_curve(curve, mid);
+    double before = INFINITY, after = INFINITY;
+    for (int t : ts) {
+      int o = 0;
+      while (tri_[t][o] == a || tri_[t][o] == b) ++o;
+      const Vector3d& p = x_[tri_[t][o]];
+      before = std::min(before, min_angle(x_[a], x_[b], p));
+      after = std::min({after, min_angle(x_[a], m, p), min_angle(m, x_[b], p)});
+    }
+    if (!(after > before) || !split(a, b)) continue;
+    added.push_back(static_cast<int>(x_.size()) - 1);
+    ++n;
+  }
+  return n;
+}
+
 void RemeshComplex::relax() {
   rebuild_grid();
   std::vector<int> nb;

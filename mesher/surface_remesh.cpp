@@ -56,20 +56,36 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     if (budget && (it == rounds / 3 || it == 2 * rounds / 3))
       m.L *= std::sqrt(static_cast<double>(m.vertices()) / static_cast<double>(target));
   }
-  if (budget && !m.match_count(target))
-    throw MeshingError("surface remeshing could not reach the vertex budget " + std::to_string(target) + " (at " +
-                       std::to_string(m.vertices()) + ")");
+  auto meet_budget = [&] {
+    if (budget && !m.match_count(target))
+      throw MeshingError("surface remeshing could not reach the vertex budget " + std::to_string(target) + " (at " +
+                         std::to_string(m.vertices()) + ")");
+  };
+  meet_budget();
   for (int k = 0; k < 3; ++k) {
     m.flip_all();
     m.relax();
   }
   m.flip_all();
+  const double poor = kPoorAngleDeg * M_PI / 180.0;
   std::size_t smoothed = 0;
-  for (int k = 0; k < kAngleSmoothingPasses; ++k) {
-    std::vector<int> moved;
-    if (m.smooth_poor(kPoorAngleDeg * M_PI / 180.0, moved) == 0) break;
-    smoothed += moved.size();
-    m.flip_around(moved);
+  auto smooth_until_still = [&] {
+    for (int k = 0; k < kAngleSmoothingPasses; ++k) {
+      std::vector<int> moved;
+      if (m.smooth_poor(poor, moved) == 0) break;
+      smoothed += moved.size();
+      m.flip_around(moved);
+    }
+  };
+  smooth_until_still();
+  // A poor triangle no move could fix may get better by splitting its longest edge (split_poor);
+  // the budget is then met again and the smoothing repeats. Measured on the phantom: one split at
+  // 21K (P30 6 -> 2 angles, Q_min 0.445 -> 0.501), none at 2.1K.
+  std::vector<int> added;
+  if (m.split_poor(poor, added) > 0) {
+    m.flip_around(added);
+    meet_budget();
+    smooth_until_still();
   }
   RemeshResult r;
   r.surface = m.result(input);
