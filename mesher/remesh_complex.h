@@ -19,6 +19,8 @@
 //             their neighbours (or halfway, or a quarter), onto their patch or junction, when that
 //             raises the smallest angle around them; a surface vertex for which none does gets a
 //             pattern search over its patch for the position with the largest smallest angle.
+//   split_poor  the longest edge of a triangle still under the threshold is split when every
+//             triangle the split makes has a larger smallest angle than the ones it replaces.
 // Every operation keeps the patch labels, the orientation and the junction polylines (their
 // vertices and edges are replaced along the same curve), and refuses a move that flips a
 // triangle. Validity: an operation is refused when one of the triangles it creates would intersect
