@@ -17,8 +17,9 @@
 //             vertex to the weighted midpoint of its two curve neighbours, then onto its junction.
 //   smooth_poor  the vertices of triangles with an angle under a threshold move towards the mean of
 //             their neighbours (or halfway, or a quarter), onto their patch or junction, when that
-//             raises the smallest angle around them; a surface vertex for which none does gets a
-//             pattern search over its patch for the position with the largest smallest angle.
+//             raises the smallest angle around them; a vertex for which none does gets a
+//             pattern search over its patch (or along its junction) for the position with the
+//             largest smallest angle.
 //   split_poor  the longest edge of a triangle still under the threshold is split when every
 //             triangle the split makes has a larger smallest angle than the ones it replaces.
 // Every operation keeps the patch labels, the orientation and the junction polylines (their
@@ -173,8 +174,9 @@ class RemeshComplex {
   template <class EdgeOperation>
   std::size_t sweep_edges(EdgeOperation operation);
   /// Surface vertex v: a pattern search over its patch (tangent steps from the best point so far,
-  /// each projected onto the patch) for the position with the largest smallest ring angle; moves
-  /// there if that beats the current one and the guards of try_move allow it. `nb`: v's neighbours.
+  /// each projected onto the patch) for the position with the largest smallest ring angle; curve
+  /// vertex v: the same along its junction (steps towards either curve neighbour); moves there if
+  /// that beats the current one and the guards of try_move allow it. `nb`: v's neighbours.
   bool search_min_angle(int v, const std::vector<int>& nb);
   /// Smallest angle of v's triangles with v at p (radians).
   double ring_min_angle(int v, const Vector3d& p) const;
