@@ -330,20 +330,26 @@ void RemeshComplex::rebuild_grid() {
     if (tri_alive_[t]) index_triangle(static_cast<int>(t));
 }
 
+bool RemeshComplex::split_point(int a, int b, const std::vector<int>& ts, Vector3d& m) const {
+  const int curve = curve_of_edge(a, b);
+  m = 0.5 * (x_[a] + x_[b]);
+  if (curve >= 0) {
+    m = proj_.onto_curve(curve, m);
+    return true;
+  }
+  Vector3d n_ref, n = Vector3d::Zero();
+  for (int t : ts) n += normal(t);
+  m = proj_.onto_patch(patch_[ts[0]], m, &n_ref);
+  return n_ref.dot(n) > 0.0;
+}
+
 bool RemeshComplex::split(int a, int b) {
   std::vector<int> ts;
   edge_triangles(a, b, ts);
   const int curve = curve_of_edge(a, b);
-  Vector3d m = 0.5 * (x_[a] + x_[b]);
+  Vector3d m;
+  if (!split_point(a, b, ts, m)) return false;
   const int v = static_cast<int>(x_.size());
-  if (curve < 0) {
-    Vector3d n_ref, n = Vector3d::Zero();
-    for (int t : ts) n += normal(t);
-    m = proj_.onto_patch(patch_[ts[0]], m, &n_ref);
-    if (!(n_ref.dot(n) > 0.0)) return false;
-  } else {
-    m = proj_.onto_curve(curve, m);
-  }
   created_.clear();
   for (int t : ts) {
     created_.push_back(moved_triangle(t, b, m, v));

@@ -83,8 +83,8 @@ class RemeshComplex {
   void relax();
 
   /// Angle-improving smoothing of the vertices of triangles with an angle under `min_angle_rad`
-  /// (header comment); returns the number of vertices moved and appends them to `moved`.
-  std::size_t smooth_poor(double min_angle_rad, std::vector<int>& moved);
+  /// (header comment); appends the vertices it moved to `moved`.
+  void smooth_poor(double min_angle_rad, std::vector<int>& moved);
   /// Tries the flip of every edge of the triangles around `vertices` (after they moved: only those
   /// triangles' angles changed, so only their edges can have become flippable); returns the flips.
   std::size_t flip_around(const std::vector<int>& vertices);
@@ -190,8 +190,11 @@ class RemeshComplex {
   /// Start of every sweep: rebuilds the grid when the triangle size has drifted from its cells.
   void rebuild_grid();
 
-  /// Splits edge (a, b); false (nothing changed) when its midpoint would project onto the far side
-  /// of a thin sheet of tissue.
+  /// Where a split of edge (a, b) (triangles `ts`) puts the new vertex: its midpoint projected onto
+  /// the edge's junction or patch; false when it would land on the far side of a thin sheet.
+  bool split_point(int a, int b, const std::vector<int>& ts, Vector3d& m) const;
+  /// Splits edge (a, b) at split_point(); false (nothing changed) when that is refused or a new
+  /// triangle would intersect.
   bool split(int a, int b);
   /// May vertex a be removed by moving it onto b (topology and kinds only)?
   bool collapse_allowed(int a, int b, const std::vector<int>& ts) const;

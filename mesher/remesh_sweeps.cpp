@@ -21,6 +21,13 @@ constexpr double kCollapseBelow = 4.0 / 5.0;
 constexpr double kSearchFirstStep = 0.25;
 constexpr int kSearchLevels = 6;
 
+std::array<int, 2> undirected(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
+
+void sort_unique(std::vector<std::array<int, 2>>& edges) {
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+}
+
 }  // namespace
 
 template <class EdgeOperation>
@@ -49,10 +56,8 @@ std::size_t RemeshComplex::flip_around(const std::vector<int>& vertices) {
   std::vector<std::array<int, 2>> candidates;
   for (int v : vertices)
     for (int t : vt_[v])
-      for (int i = 0; i < 3; ++i) candidates.push_back({std::min(tri_[t][i], tri_[t][(i + 1) % 3]),
-                                                      std::max(tri_[t][i], tri_[t][(i + 1) % 3])});
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      for (int i = 0; i < 3; ++i) candidates.push_back(undirected(tri_[t][i], tri_[t][(i + 1) % 3]));
+  sort_unique(candidates);
   std::size_t n = 0;
   for (const auto& e : candidates)
     if (edge_exists(e[0], e[1]) && try_flip(e[0], e[1])) ++n;
@@ -69,19 +74,17 @@ std::size_t RemeshComplex::split_poor(double min_angle_rad, std::vector<int>& ad
     int best = 0;
     for (int i = 1; i < 3; ++i)
       if ((x_[q[(i + 1) % 3]] - x_[q[i]]).squaredNorm() > (x_[q[(best + 1) % 3]] - x_[q[best]]).squaredNorm()) best = i;
-    longest.push_back({std::min(q[best], q[(best + 1) % 3]), std::max(q[best], q[(best + 1) % 3])});
+    longest.push_back(undirected(q[best], q[(best + 1) % 3]));
   }
-  std::sort(longest.begin(), longest.end());
-  longest.erase(std::unique(longest.begin(), longest.end()), longest.end());
+  sort_unique(longest);
   std::size_t n = 0;
   std::vector<int> ts;
   for (const auto& [a, b] : longest) {
     if (!edge_exists(a, b)) continue;
     edge_triangles(a, b, ts);
-    // The split point as split() computes it, and the smallest angle before and after.
-    const int curve = curve_of_edge(a, b);
-    const Vector3d mid = 0.5 * (x_[a] + x_[b]);
-    const Vector3d m = curve < 0 ? proj_.onto_patch(patch_[ts[0]], mid) : proj_.onto_curve(curve, mid);
+    // The smallest angle of the edge's triangles before and after the split.
+    Vector3d m;
+    if (!split_point(a, b, ts, m)) continue;
     double before = INFINITY, after = INFINITY;
     for (int t : ts) {
       int o = 0;
@@ -135,13 +138,12 @@ void RemeshComplex::relax() {
   }
 }
 
-std::size_t RemeshComplex::smooth_poor(double min_angle_rad, std::vector<int>& moved_vertices) {
+void RemeshComplex::smooth_poor(double min_angle_rad, std::vector<int>& moved_vertices) {
   rebuild_grid();
   std::vector<char> todo(x_.size(), 0);
   for (std::size_t t = 0; t < tri_.size(); ++t)
     if (tri_alive_[t] && min_angle(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]) < min_angle_rad)
       for (int v : tri_[t]) todo[v] = 1;
-  std::size_t moved = 0;
   std::vector<int> nb;
   for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
     if (!todo[v] || !vertex_alive_[v] || kind_[v] == Kind::Corner) continue;
@@ -175,10 +177,8 @@ std::size_t RemeshComplex::smooth_poor(double min_angle_rad, std::vector<int>& m
       }
     }
     if (!done) done = search_min_angle(v, nb);
-    moved += done;
     if (done) moved_vertices.push_back(v);
   }
-  return moved;
 }
 
 bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {

@@ -1,9 +1,7 @@
 #include "mesher/surface_distance.h"
 
-#include "mesher/face_key.h"
-
 #include <algorithm>
-#include <cstdint>
+#include <array>
 #include <vector>
 
 namespace tissuemesh {
@@ -12,19 +10,16 @@ namespace {
 double max_distance(const TriSurface& from, const SurfaceProjection& to) {
   // The samples: vertices, triangle centroids and edge midpoints (each edge once).
   std::vector<Eigen::Vector3d> samples(from.points);
-  std::vector<std::uint64_t> edges;
+  std::vector<std::array<int, 2>> edges;
   edges.reserve(3 * from.triangles.size());
   for (const std::array<int, 3>& t : from.triangles) {
     const Eigen::Vector3d &a = from.points[t[0]], &b = from.points[t[1]], &c = from.points[t[2]];
     samples.push_back((a + b + c) / 3.0);
-    for (int e = 0; e < 3; ++e) edges.push_back(edge_key(t[e], t[(e + 1) % 3]));
+    for (int e = 0; e < 3; ++e) edges.push_back({std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3])});
   }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  for (const std::uint64_t e : edges) {
-    const auto a = static_cast<std::size_t>(e >> 32), b = static_cast<std::size_t>(e & 0xffffffffu);
-    samples.push_back(0.5 * (from.points[a] + from.points[b]));
-  }
+  for (const auto& [a, b] : edges) samples.push_back(0.5 * (from.points[a] + from.points[b]));
   // Queries are independent (the projection's trees are built in its constructor): two threads;
   // a max is exact, so the result does not depend on the split.
   double d = samples.empty() ? 0.0 : to.distance(samples.front());

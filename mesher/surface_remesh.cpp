@@ -72,7 +72,8 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   auto smooth_until_still = [&] {
     for (int k = 0; k < kAngleSmoothingPasses; ++k) {
       std::vector<int> moved;
-      if (m.smooth_poor(poor, moved) == 0) break;
+      m.smooth_poor(poor, moved);
+      if (moved.empty()) break;
       smoothed += moved.size();
       m.flip_around(moved);
     }
