@@ -1,7 +1,6 @@
 #include "mesher/remesh_complex.h"
 
 #include "mesher/face_key.h"
-#include "core/errors.h"
 #include "mesher/triangle_geometry.h"
 
 #include <Eigen/Geometry>
@@ -23,6 +22,10 @@ constexpr double kFlipFlatCos = 0.906;
 /// The intersection guard's grid is rebuilt when the mean triangle size has drifted this far from
 /// its cell size (coarsening grows triangles ~3x over the first rounds).
 constexpr double kGridDrift = 1.5;
+/// Grid cell edge over the mean triangle extent (largest box side): fewer cells per query against
+/// more triangles per cell. Remeshing the 21K phantom (2 runs each, same output): 9.5 s at 0.7,
+/// 8.9 s at 1, 8.45 s at 1.5, 9.1 s at 2, 9.8 s at 3.
+constexpr double kGridCellPerExtent = 1.5;
 /// The approximation bound is at least this fraction of the edge length L.
 constexpr double kDeviationPerEdge = 0.25;
 /// Size cap around stuck edges (mesher/graded_size_cap.h): h = 1.5 times the stuck edge there, so
@@ -312,7 +315,8 @@ bool RemeshComplex::would_intersect(const std::vector<int>& replaced) {
 void RemeshComplex::index_triangle(int t) { grid_.insert(t, box_of({x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]})); }
 
 void RemeshComplex::rebuild_grid() {
-  // Cells about the size of a triangle: a query then visits a few cells of a few triangles each.
+  // Cells about the size of a triangle (kGridCellPerExtent): a query visits a few cells of a few
+  // triangles each.
   // Every change is entered as it happens, so the grid is only rebuilt when the triangles' size
   // has drifted by more than a factor kGridDrift from the cell size.
   double extent = 0.0;
@@ -322,7 +326,7 @@ void RemeshComplex::rebuild_grid() {
       extent += box_of({x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]}).sizes().maxCoeff();
       ++n;
     }
-  const double cell = n > 0 && extent > 0.0 ? extent / static_cast<double>(n) : 1.0;
+  const double cell = kGridCellPerExtent * (n > 0 && extent > 0.0 ? extent / static_cast<double>(n) : 1.0);
   if (grid_cell_ > 0.0 && cell < kGridDrift * grid_cell_ && cell > grid_cell_ / kGridDrift) return;
   grid_cell_ = cell;
   grid_.reset(cell);
@@ -549,55 +553,5 @@ bool RemeshComplex::try_flip(int a, int b) {
   ++flips;
   return true;
 }
-
-TriSurface RemeshComplex::result(const TriSurface& in) const {
-  TriSurface out;
-  out.tissue_names = in.tissue_names;
-  std::vector<int> index(x_.size(), -1);
-  for (std::size_t v = 0; v < x_.size(); ++v)
-    if (vertex_alive_[v]) {
-      index[v] = static_cast<int>(out.points.size());
-      out.points.push_back(x_[v]);
-    }
-  for (std::size_t t = 0; t < tri_.size(); ++t) {
-    if (!tri_alive_[t]) continue;
-    out.triangles.push_back({index[tri_[t][0]], index[tri_[t][1]], index[tri_[t][2]]});
-    out.labels.push_back(proj_.patches().pair_of_patch[patch_[t]]);
-  }
-  // Junction polylines: chain each curve's edges, from an end (open) or its lowest vertex (closed).
-  std::vector<std::vector<std::array<int, 2>>> by_curve(curve_edges_.size());
-  for (const auto& kv : curve_edge_)
-    by_curve[kv.second].push_back({static_cast<int>(kv.first >> 32), static_cast<int>(kv.first & 0xffffffffu)});
-  for (std::size_t c = 0; c < by_curve.size(); ++c) {
-    auto& es = by_curve[c];
-    std::sort(es.begin(), es.end());
-    std::unordered_map<int, std::vector<int>> adj;
-    for (const auto& e : es) {
-      adj[e[0]].push_back(e[1]);
-      adj[e[1]].push_back(e[0]);
-    }
-    int start = -1;  // open: the lowest-indexed end; closed: the lowest vertex
-    for (const auto& kv : adj)
-      if (kv.second.size() == 1 && (start < 0 || kv.first < start)) start = kv.first;
-    if (start < 0) start = es.front()[0];
-    std::vector<int> line{start};
-    int prev = -1, cur = start;
-    for (std::size_t k = 0; k < es.size(); ++k) {
-      int n = -1;
-      for (int w : adj[cur])
-        if (w != prev && (n < 0 || w < n)) n = w;
-      if (n < 0) break;
-      prev = cur;
-      cur = n;
-      line.push_back(cur);
-    }
-    if (line.size() != es.size() + 1)
-      throw MeshingError("surface remeshing broke junction polyline " + std::to_string(c));
-    for (int& v : line) v = index[v];
-    out.junctions.push_back(std::move(line));
-  }
-  return out;
-}
-
 
 }  // namespace tissuemesh

@@ -94,6 +94,11 @@ class RemeshComplex {
   /// returns the splits and appends the new vertices to `added`.
   std::size_t split_poor(double min_angle_rad, std::vector<int>& added);
 
+  /// Drops dead vertices and triangles (the coarsening kills most of them), renumbering the live
+  /// ones in their order: every sweep then walks short arrays, and since all index comparisons
+  /// keep their outcome, the results do not change (mesher/remesh_compact.cpp).
+  void compact();
+
   /// Enters every edge between two junction vertices that is shorter than `below` times h at its
   /// midpoint into the size cap (header comment); edges entered before stay. Call once the
   /// collapses have converged, so that the short edges left are the ones the corners and guards

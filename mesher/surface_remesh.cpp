@@ -46,9 +46,13 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   auto stage = progress.stage("surface remeshing");
   const int rounds = std::max(1, options.iterations);
   for (int it = 0; it < rounds; ++it) {
-    // The first rounds coarsen a fine extraction by a large factor: collapse until stable.
-    for (int k = 0; k < 20; ++k)
-      if (m.collapse_short() == 0) break;
+    // The first rounds coarsen a fine extraction by a large factor: collapse until stable, dropping
+    // the dead vertices and triangles after each sweep (at 21K, 183,803 of the 203,882 vertices go).
+    for (int k = 0; k < 20; ++k) {
+      const std::size_t collapsed = m.collapse_short();
+      m.compact();
+      if (collapsed == 0) break;
+    }
     if (it >= 1) m.grade_stuck_edges(kStuckBelow);
     m.split_long();
     m.flip_all();

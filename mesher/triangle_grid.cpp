@@ -36,11 +36,14 @@ void TriangleGrid::remove(int id) {
 }
 
 void TriangleGrid::insert(int id, const Eigen::AlignedBox3d& box) {
+  const Eigen::Vector3i lo = cell_of(box.min()), hi = cell_of(box.max());
+  if (id < static_cast<int>(range_.size()) && range_[id].present && range_[id].lo == lo && range_[id].hi == hi)
+    return;  // the same cells: nothing to change (most moves are small)
   remove(id);
   if (id >= static_cast<int>(range_.size())) range_.resize(id + 1);
   Range& r = range_[id];
-  r.lo = cell_of(box.min());
-  r.hi = cell_of(box.max());
+  r.lo = lo;
+  r.hi = hi;
   r.present = true;
   for (int i = r.lo[0]; i <= r.hi[0]; ++i)
     for (int j = r.lo[1]; j <= r.hi[1]; ++j)
