@@ -2,6 +2,7 @@
 
 #include "mesher/face_key.h"
 #include "mesher/mesh_quality.h"
+#include "mesher/tet_faces.h"
 
 #include <algorithm>
 #include <array>
@@ -10,10 +11,6 @@
 namespace tissuemesh {
 
 namespace {
-
-std::uint64_t face_of(const std::array<int, 4>& t, int skip) {
-  return face_key(t[(skip + 1) % 4], t[(skip + 2) % 4], t[(skip + 3) % 4]);
-}
 
 double min_dihedral(const TetMesh& m, const std::array<int, 4>& t) {
   const TetShape s = tet_shape(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
@@ -26,9 +23,10 @@ BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral
   BoundarySliverRemoval r;
   r.removed_per_tissue.assign(mesh.num_tissues(), 0);
   if (mesh.points.size() >= kMaxFaceKeyNodes) return r;  // beyond the face-key range: leave as is
-  std::unordered_map<std::uint64_t, int> uses;  // number of live tets on each face
-  for (const auto& t : mesh.tets)
-    for (int q = 0; q < 4; ++q) ++uses[face_of(t, q)];
+  const std::size_t n = mesh.tets.size();
+  const TetFaces face = number_tet_faces(mesh.tets);
+  std::vector<int> uses(face.count, 0);  // number of live tets on each face
+  for (int f : face.id) ++uses[static_cast<std::size_t>(f)];
   // Boundary faces per edge: removing a cap must not give an edge more than two of them.
   std::unordered_map<std::uint64_t, int> boundary_edge_faces;
   auto edge = [](int a, int b) {
@@ -38,19 +36,19 @@ BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral
     const int v[3] = {t[(skip + 1) % 4], t[(skip + 2) % 4], t[(skip + 3) % 4]};
     for (int k = 0; k < 3; ++k) boundary_edge_faces[edge(v[k], v[(k + 1) % 3])] += delta;
   };
-  for (const auto& t : mesh.tets)
+  for (std::size_t i = 0; i < n; ++i)
     for (int q = 0; q < 4; ++q)
-      if (uses[face_of(t, q)] == 1) count_face_edges(t, q, +1);
+      if (uses[face.of(i, q)] == 1) count_face_edges(mesh.tets[i], q, +1);
   std::vector<char> alive(mesh.tets.size(), 1);
   bool changed = true;
   while (changed) {
     changed = false;
-    for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
       if (!alive[i]) continue;
       const auto& t = mesh.tets[i];
       int outer = 0;
       std::array<bool, 4> is_outer{};
-      for (int q = 0; q < 4; ++q) outer += (is_outer[q] = uses[face_of(t, q)] == 1);
+      for (int q = 0; q < 4; ++q) outer += (is_outer[q] = uses[face.of(i, q)] == 1);
       if (outer < 2 || min_dihedral(mesh, t) >= min_dihedral_deg) continue;
       if (outer == 2) {
         // The two inner faces share the edge opposite the outer faces' common edge; it must not
@@ -62,8 +60,8 @@ BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral
       }
       alive[i] = 0;
       for (int q = 0; q < 4; ++q) {
-        const bool was_outer = uses[face_of(t, q)] == 1;
-        --uses[face_of(t, q)];
+        const bool was_outer = uses[face.of(i, q)] == 1;
+        --uses[face.of(i, q)];
         // An outer face leaves the boundary; an inner face joins it (its other tet remains).
         count_face_edges(t, q, was_outer ? -1 : +1);
       }

@@ -1,13 +1,12 @@
 #include "mesher/sliver_smoothing.h"
 
-#include "mesher/face_key.h"
 #include "mesher/mesh_quality.h"
+#include "mesher/tet_faces.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -60,17 +59,15 @@ std::vector<Mobility> mobility(const TetMesh& mesh, double near_planar_rad, bool
     int tets = 0, tissue = 0, other = 0;  // tissue of the first tet and of the second (0 = none)
     std::array<int, 3> nodes{};
   };
-  std::unordered_map<std::uint64_t, Face> faces;
-  faces.reserve(4 * mesh.tets.size());
+  const TetFaces ids = number_tet_faces(mesh.tets);
+  std::vector<Face> faces(ids.count);
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
     const auto& k = mesh.tets[t];
     for (int f = 0; f < 4; ++f) {
-      const std::array<int, 3> n{k[(f + 1) % 4], k[(f + 2) % 4], k[(f + 3) % 4]};
-      auto [it, inserted] = faces.try_emplace(face_key(n[0], n[1], n[2]));
-      Face& face = it->second;
-      if (inserted) {
+      Face& face = faces[static_cast<std::size_t>(ids.of(t, f))];
+      if (face.tets == 0) {  // first seen from this tet
         face.tissue = mesh.tissue_ids[t];
-        face.nodes = n;
+        face.nodes = {k[(f + 1) % 4], k[(f + 2) % 4], k[(f + 3) % 4]};
       } else {
         face.other = mesh.tissue_ids[t];
       }
@@ -79,11 +76,11 @@ std::vector<Mobility> mobility(const TetMesh& mesh, double near_planar_rad, bool
   }
   std::vector<Mobility> out(mesh.points.size());
   for (auto& m : out) m.kind = Mobility::kFree;
-  // Faces in hash order would make the result depend on the hash; visit them in tet order.
+  // Visit the faces in tet order (from each side), not in id order.
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
     const auto& k = mesh.tets[t];
     for (int f = 0; f < 4; ++f) {
-      const Face& face = faces.at(face_key(k[(f + 1) % 4], k[(f + 2) % 4], k[(f + 3) % 4]));
+      const Face& face = faces[static_cast<std::size_t>(ids.of(t, f))];
       if (face.tets == 2 && face.tissue == face.other) continue;  // inside one tissue
       const std::pair<int, int> pair = std::minmax(face.tissue, face.tets == 1 ? 0 : face.other);
       const Eigen::Vector3d a = mesh.points[face.nodes[0]], b = mesh.points[face.nodes[1]], c = mesh.points[face.nodes[2]];
