@@ -201,8 +201,9 @@ class RemeshComplex {
   /// Splits edge (a, b) at split_point(); false (nothing changed) when that is refused or a new
   /// triangle would intersect.
   bool split(int a, int b);
-  /// May vertex a be removed by moving it onto b (topology and kinds only)?
-  bool collapse_allowed(int a, int b, const std::vector<int>& ts) const;
+  /// May vertex a be removed by moving it onto b (topology and kinds only)? `ts`: the edge's
+  /// triangles, `na`: a's neighbours.
+  bool collapse_allowed(int a, int b, const std::vector<int>& ts, const std::vector<int>& na) const;
   /// Collapses a into b if allowed and geometrically sound; `max_relative` bounds the new edges.
   bool try_collapse(int a, int b, double max_relative);
   /// Removes the lower-ranked vertex of (a, b) (surface before curve, then the higher index), or
