@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <unordered_map>
 
 namespace tissuemesh {
@@ -23,7 +24,7 @@ BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral
   BoundarySliverRemoval r;
   r.removed_per_tissue.assign(mesh.num_tissues(), 0);
   if (mesh.points.size() >= kMaxFaceKeyNodes) return r;  // beyond the face-key range: leave as is
-  const std::size_t n = mesh.tets.size();
+  const std::size_t num_tets = mesh.tets.size();
   const TetFaces face = number_tet_faces(mesh.tets);
   std::vector<int> uses(face.count, 0);  // number of live tets on each face
   for (int f : face.id) ++uses[static_cast<std::size_t>(f)];
@@ -36,14 +37,14 @@ BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral
     const int v[3] = {t[(skip + 1) % 4], t[(skip + 2) % 4], t[(skip + 3) % 4]};
     for (int k = 0; k < 3; ++k) boundary_edge_faces[edge(v[k], v[(k + 1) % 3])] += delta;
   };
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < num_tets; ++i)
     for (int q = 0; q < 4; ++q)
       if (uses[face.of(i, q)] == 1) count_face_edges(mesh.tets[i], q, +1);
   std::vector<char> alive(mesh.tets.size(), 1);
   bool changed = true;
   while (changed) {
     changed = false;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < num_tets; ++i) {
       if (!alive[i]) continue;
       const auto& t = mesh.tets[i];
       int outer = 0;

@@ -54,7 +54,8 @@ void RemeshComplex::compact() {
   curve_edge_ = std::move(curve_edge);
   seen_.assign(nt, 0);
   stamp_ = 0;
-  grid_cell_ = 0.0;  // the next sweep rebuilds the grid on the new triangle ids
+  grid_cell_ = 0.0;
+  rebuild_grid();  // on the new triangle ids
 }
 
 TriSurface RemeshComplex::result(const TriSurface& in) const {

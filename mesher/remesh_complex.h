@@ -192,7 +192,8 @@ class RemeshComplex {
   double shorter_curve_edge(int v, const Vector3d& p) const;
   /// Enters triangle t's current box in the grid (after it was created or changed).
   void index_triangle(int t);
-  /// Start of every sweep: rebuilds the grid when the triangle size has drifted from its cells.
+  /// Start of every sweep (and end of compact()): rebuilds the grid when the triangle size has
+  /// drifted from its cells, or when it has none (grid_cell_ 0).
   void rebuild_grid();
 
   /// Where a split of edge (a, b) (triangles `ts`) puts the new vertex: its midpoint projected onto
@@ -219,7 +220,7 @@ class RemeshComplex {
   std::vector<Vector3d> reference_;             ///< the input vertices
   std::vector<std::vector<int>> represents_;    ///< per vertex: input vertices collapsed into it
   TriangleGrid grid_;
-  double grid_cell_ = 0.0;      ///< the grid's cell size (0: not built yet)
+  double grid_cell_ = 0.0;      ///< the grid's cell size (0: not built yet, or ids renumbered)
   std::vector<unsigned> seen_;  ///< per triangle: stamp of the last would_intersect() visit
   unsigned stamp_ = 0;
   std::vector<int> candidates_;

@@ -2,8 +2,9 @@
 // box (the remesher's intersection guard, mesher/remesh_complex.h).
 //
 // Each id is entered in every cell its box touches; entering an id again first takes it out of
-// the cells of its previous box, and remove() takes it out entirely, so a query sees each live id
-// in the cells of its current box only. A query returns the ids of the cells the box touches
+// the cells of its previous box (nothing changes when the new box touches the same cells), and
+// remove() takes it out entirely, so a query sees each live id in the cells of its current box
+// only. A query returns the ids of the cells the box touches
 // (an id spanning several of them more than once); the caller tests the actual boxes.
 // Deterministic for a deterministic sequence of calls.
 #pragma once

@@ -34,3 +34,18 @@ TEST(TriangleGrid, ReinsertMovesAnIdAndRemoveDropsIt) {
   EXPECT_FALSE(found(g, box(-4.0, 6.0), 7));
   EXPECT_TRUE(found(g, box(-4.0, 6.0), 8));
 }
+
+TEST(TriangleGrid, ReinsertingIntoTheSameCellsKeepsOneEntryAndRemovedIdsComeBack) {
+  TriangleGrid g;
+  g.reset(1.0);
+  g.insert(3, box(0.1, 1.5));  // cells x = 0, 1
+  g.insert(3, box(0.2, 1.4));  // the same cells: nothing changes
+  std::vector<int> out;
+  g.query(box(0.5, 0.6), out);  // cell x = 0 only
+  EXPECT_EQ(std::count(out.begin(), out.end(), 3), 1);
+  g.remove(3);
+  EXPECT_FALSE(found(g, box(0.5, 0.6), 3));
+  g.insert(3, box(0.1, 1.5));  // the cells it had before its removal: entered again
+  EXPECT_TRUE(found(g, box(0.5, 0.6), 3));
+  EXPECT_TRUE(found(g, box(1.2, 1.3), 3));
+}
