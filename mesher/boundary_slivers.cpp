@@ -30,12 +30,9 @@ BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral
   for (int f : face.id) ++uses[static_cast<std::size_t>(f)];
   // Boundary faces per edge: removing a cap must not give an edge more than two of them.
   std::unordered_map<std::uint64_t, int> boundary_edge_faces;
-  auto edge = [](int a, int b) {
-    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
-  };
   auto count_face_edges = [&](const std::array<int, 4>& t, int skip, int delta) {
     const int v[3] = {t[(skip + 1) % 4], t[(skip + 2) % 4], t[(skip + 3) % 4]};
-    for (int k = 0; k < 3; ++k) boundary_edge_faces[edge(v[k], v[(k + 1) % 3])] += delta;
+    for (int k = 0; k < 3; ++k) boundary_edge_faces[edge_key(v[k], v[(k + 1) % 3])] += delta;
   };
   for (std::size_t i = 0; i < num_tets; ++i)
     for (int q = 0; q < 4; ++q)
@@ -57,7 +54,7 @@ BoundarySliverRemoval remove_boundary_slivers(TetMesh& mesh, double min_dihedral
         int shared[2], n = 0;
         for (int q = 0; q < 4; ++q)
           if (is_outer[q]) shared[n++] = t[q];  // face q is opposite vertex q
-        if (boundary_edge_faces[edge(shared[0], shared[1])] > 0) continue;
+        if (boundary_edge_faces[edge_key(shared[0], shared[1])] > 0) continue;
       }
       alive[i] = 0;
       for (int q = 0; q < 4; ++q) {

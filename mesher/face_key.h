@@ -1,6 +1,7 @@
 // A triangle's (or an edge's) identity independent of node order, packed in 64 bits for hash maps.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -22,6 +23,11 @@ inline std::uint64_t face_key(int a, int b, int c) {
 inline std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
+
+/// The edge an edge_key() stands for: its node ids, the smaller first.
+inline std::array<int, 2> edge_of_key(std::uint64_t key) {
+  return {static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)};
 }
 
 }  // namespace tissuemesh

@@ -84,7 +84,7 @@ TriSurface interface_surface(const TetMesh& mesh, std::vector<int>* node_of_poin
   for (std::size_t i = 0; i < edge_regions.size();) {
     std::size_t j = i;
     while (j < edge_regions.size() && edge_regions[j].first == edge_regions[i].first) ++j;
-    const int a = static_cast<int>(edge_regions[i].first >> 32), b = static_cast<int>(edge_regions[i].first & 0xffffffffu);
+    const auto [a, b] = edge_of_key(edge_regions[i].first);
     for (std::size_t k = i; k < j; ++k) {
       regions_at[a].insert(edge_regions[k].second);
       regions_at[b].insert(edge_regions[k].second);

@@ -49,8 +49,10 @@ void RemeshComplex::compact() {
   patch_.resize(nt);
   tri_alive_.assign(nt, 1);
   std::unordered_map<std::uint64_t, int> curve_edge;
-  for (const auto& [key, curve] : curve_edge_)
-    curve_edge[edge_key(vertex_index[static_cast<int>(key >> 32)], vertex_index[static_cast<int>(key & 0xffffffffu)])] = curve;
+  for (const auto& [key, curve] : curve_edge_) {
+    const auto [a, b] = edge_of_key(key);
+    curve_edge[edge_key(vertex_index[a], vertex_index[b])] = curve;
+  }
   curve_edge_ = std::move(curve_edge);
   seen_.assign(nt, 0);
   stamp_ = 0;
@@ -75,7 +77,7 @@ TriSurface RemeshComplex::result(const TriSurface& in) const {
   // Junction polylines: chain each curve's edges, from an end (open) or its lowest vertex (closed).
   std::vector<std::vector<std::array<int, 2>>> by_curve(curve_edges_.size());
   for (const auto& kv : curve_edge_)
-    by_curve[kv.second].push_back({static_cast<int>(kv.first >> 32), static_cast<int>(kv.first & 0xffffffffu)});
+    by_curve[kv.second].push_back(edge_of_key(kv.first));
   for (std::size_t c = 0; c < by_curve.size(); ++c) {
     auto& es = by_curve[c];
     std::sort(es.begin(), es.end());
