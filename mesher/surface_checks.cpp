@@ -1,6 +1,7 @@
 #include "mesher/surface_checks.h"
 
 #include "mesher/face_key.h"
+#include "mesher/triangle_intersection.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -11,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <stdexcept>
 
 namespace tissuemesh {
 namespace {
@@ -83,38 +85,63 @@ void intersecting_pairs(const std::vector<Kernel::Point_3>& points, const std::v
   for (const auto& [f, g] : pairs) out.emplace_back(static_cast<int>(f.idx()), static_cast<int>(g.idx()));
 }
 
+/// Volume enclosed by outward triangles (divergence theorem), mm^3; summed in triangle order.
+double enclosed_volume(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int, 3>>& tris) {
+  double volume = 0.0;
+  for (const auto& t : tris) {
+    const Eigen::Vector3d &a = points[t[0]], &b = points[t[1]], &d = points[t[2]];
+    volume += a.dot(b.cross(d)) / 6.0;
+  }
+  return volume;
+}
+
+/// Tissue `id`'s boundary triangles, oriented outward (global vertex ids), and their global ids.
+std::vector<std::array<int, 3>> outward_boundary(const TriSurface& s, int id, std::vector<int>& ids) {
+  std::vector<char> reversed;
+  s.tissue_boundary(id, ids, reversed);
+  std::vector<std::array<int, 3>> tris;
+  tris.reserve(ids.size());
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    auto t = s.triangles[static_cast<std::size_t>(ids[k])];
+    if (reversed[k]) std::swap(t[1], t[2]);
+    tris.push_back(t);
+  }
+  return tris;
+}
+
+/// Closed box of a triangle's corners (the candidate filter of CGAL's self_intersections).
+struct Box3 {
+  Eigen::Vector3d lo, hi;
+  explicit Box3(const TrianglePoints& p) : lo(p[0].cwiseMin(p[1]).cwiseMin(p[2])), hi(p[0].cwiseMax(p[1]).cwiseMax(p[2])) {}
+  bool overlaps(const Box3& o) const { return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all(); }
+};
+
 /// Per tissue: the check without intersections, its outward triangles and their global ids.
 TissueSurfaceCheck tissue_check(const TriSurface& s, int id, std::vector<std::pair<int, int>>* pairs) {
   TissueSurfaceCheck c;
   c.tissue_id = id;
   c.name = s.tissue_names[static_cast<std::size_t>(id - 1)];
   std::vector<int> ids;
-  std::vector<char> reversed;
-  s.tissue_boundary(id, ids, reversed);
-  std::map<int, int> local;  // global vertex -> local index (ascending: deterministic)
-  std::vector<std::array<int, 3>> tris;
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    auto t = s.triangles[static_cast<std::size_t>(ids[k])];
-    if (reversed[k]) std::swap(t[1], t[2]);
-    tris.push_back(t);
-    for (int v : t) local.emplace(v, 0);
-  }
+  std::vector<std::array<int, 3>> tris = outward_boundary(s, id, ids);
+  // Global vertex -> local index, numbered in ascending global order (deterministic); -1 = not
+  // on this boundary.
+  std::vector<int> local(s.points.size(), -1);
+  for (const auto& t : tris)
+    for (int v : t) local[static_cast<std::size_t>(v)] = 0;
   c.triangles = tris.size();
-  c.vertices = local.size();
+  c.vertices = static_cast<std::size_t>(std::count(local.begin(), local.end(), 0));
   count_edges(tris, c);
-  for (const auto& t : tris) {
-    const Eigen::Vector3d &a = s.points[t[0]], &b = s.points[t[1]], &d = s.points[t[2]];
-    c.volume_mm3 += a.dot(b.cross(d)) / 6.0;
-  }
+  c.volume_mm3 = enclosed_volume(s.points, tris);
   if (c.closed_and_oriented() && !tris.empty()) {
     std::vector<Kernel::Point_3> points;
-    int next = 0;
-    for (auto& [v, index] : local) {
-      index = next++;
+    points.reserve(c.vertices);
+    for (std::size_t v = 0; v < local.size(); ++v) {
+      if (local[v] < 0) continue;
+      local[v] = static_cast<int>(points.size());
       points.emplace_back(s.points[v][0], s.points[v][1], s.points[v][2]);
     }
     for (auto& t : tris)
-      for (int& v : t) v = local[v];
+      for (int& v : t) v = local[static_cast<std::size_t>(v)];
     c.nonmanifold_vertices = count_nonmanifold_vertices(tris, points.size());
     if (c.nonmanifold_vertices == 0) {
       std::vector<std::pair<int, int>> found;
@@ -168,6 +195,74 @@ SurfaceCheckReport check_surface(const TriSurface& s, std::vector<int>* intersec
     }
   report.junction_edges = edge_triangles.size();
   for (const auto& [key, n] : edge_triangles) report.junction_edges_off_junction += n < 3;
+  return report;
+}
+
+SurfaceCheckReport recheck_after_moves(const TriSurface& s, const SurfaceCheckReport& previous,
+                                       const std::vector<int>& previous_intersecting, const std::vector<int>& moved,
+                                       std::vector<int>* intersecting) {
+  std::vector<char> is_moved(s.points.size(), 0);
+  for (int v : moved) is_moved[static_cast<std::size_t>(v)] = 1;
+  auto changed = [&](const std::array<int, 3>& t) {
+    return is_moved[static_cast<std::size_t>(t[0])] || is_moved[static_cast<std::size_t>(t[1])] ||
+           is_moved[static_cast<std::size_t>(t[2])];
+  };
+  for (int t : previous_intersecting)
+    if (!changed(s.triangles[static_cast<std::size_t>(t)]))
+      throw std::invalid_argument("recheck_after_moves: intersecting triangle " + std::to_string(t) +
+                                  " has no moved vertex");
+  SurfaceCheckReport report = previous;  // topology unchanged: counts, duplicates, junction edges
+  std::vector<int> found;
+  for (TissueSurfaceCheck& c : report.tissues) {
+    std::vector<int> ids;
+    const std::vector<std::array<int, 3>> tris = outward_boundary(s, c.tissue_id, ids);
+    c.volume_mm3 = enclosed_volume(s.points, tris);
+    if (c.intersecting_pairs < 0) continue;  // not checked before (open or non-manifold): still not
+    // Every pair of unchanged triangles was tested before and found apart (a triangle of an
+    // intersecting pair has a moved vertex), so only pairs with a changed triangle can intersect.
+    // CGAL's rule: a degenerate (collinear) triangle is the pair (f, f) and meets nothing else.
+    auto points = [&](std::size_t k) {
+      const auto& t = tris[k];
+      return TrianglePoints{s.points[static_cast<std::size_t>(t[0])], s.points[static_cast<std::size_t>(t[1])],
+                            s.points[static_cast<std::size_t>(t[2])]};
+    };
+    std::vector<std::size_t> moving;  // positions in tris of changed, non-degenerate triangles
+    std::vector<char> is_moving(tris.size(), 0);
+    c.intersecting_pairs = 0;
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+      if (!changed(tris[k])) continue;
+      const TrianglePoints p = points(k);
+      if (triangle_is_degenerate(p)) {
+        ++c.intersecting_pairs;
+        found.push_back(ids[k]);
+      } else {
+        moving.push_back(k);
+        is_moving[k] = 1;
+      }
+    }
+    if (moving.empty()) continue;
+    std::vector<Box3> boxes;
+    for (std::size_t k : moving) boxes.emplace_back(points(k));
+    Box3 all = boxes.front();
+    for (const Box3& b : boxes) all.lo = all.lo.cwiseMin(b.lo), all.hi = all.hi.cwiseMax(b.hi);
+    for (std::size_t u = 0; u < tris.size(); ++u) {
+      const TrianglePoints pu = points(u);
+      const Box3 bu(pu);
+      if (!bu.overlaps(all) || (changed(tris[u]) && !is_moving[u])) continue;  // degenerate: no box
+      for (std::size_t i = 0; i < moving.size(); ++i) {
+        const std::size_t k = moving[i];
+        if (k == u || (is_moving[u] && u < k) || !boxes[i].overlaps(bu)) continue;  // each pair once
+        if (!triangles_intersect(points(k), tris[k], pu, tris[u])) continue;
+        ++c.intersecting_pairs;
+        found.insert(found.end(), {ids[k], ids[u]});
+      }
+    }
+  }
+  if (intersecting) {
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    *intersecting = std::move(found);
+  }
   return report;
 }
 

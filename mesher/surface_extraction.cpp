@@ -264,12 +264,11 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
 
   // Relaxation can fold the surface where a thin layer bends sharply. Vertices of intersecting
   // triangles go halfway back to their voxel corner, round after round (the unrelaxed voxel
-  // boundary of well-composed regions has no intersections). The loop ends with a check of the
-  // final points, which is the one returned.
-  for (int round = 0;; ++round) {
-    std::vector<int> bad;
-    out.checks = check_surface(s, &bad);
-    if (bad.empty() || round == kUnfoldRounds) break;
+  // boundary of well-composed regions has no intersections); the last round puts them there. After
+  // the first, full check each round re-checks only around the vertices it moved.
+  std::vector<int> bad;
+  out.checks = check_surface(s, &bad);
+  for (int round = 0; !bad.empty() && round < kUnfoldRounds; ++round) {
     std::vector<int> moved;
     for (int t : bad)
       for (int v : s.triangles[static_cast<std::size_t>(t)]) moved.push_back(v);
@@ -282,6 +281,9 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
       s.points[static_cast<std::size_t>(v)] = ids.to_physical(x[static_cast<std::size_t>(v)]);
     }
     out.unfolded_vertices += moved.size();
+    std::vector<int> still;
+    out.checks = recheck_after_moves(s, out.checks, bad, moved, &still);
+    bad = std::move(still);
   }
   stage.note(std::to_string(n) + " vertices, " + std::to_string(s.triangles.size()) + " triangles, " +
              std::to_string(s.junctions.size()) + " junction polylines");

@@ -22,6 +22,8 @@ bool strictly_one_side(const Kernel::Triangle_3& t, const Point& p, const Point&
 
 }  // namespace
 
+bool triangle_is_degenerate(const TrianglePoints& t) { return CGAL::collinear(point(t[0]), point(t[1]), point(t[2])); }
+
 bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, const TrianglePoints& b,
                          const std::array<int, 3>& ib) {
   // Position in b of each vertex of a (-1: not shared).

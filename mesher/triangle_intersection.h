@@ -19,6 +19,10 @@ namespace tissuemesh {
 
 using TrianglePoints = std::array<Eigen::Vector3d, 3>;
 
+/// True when the three corners are collinear (exact). CGAL's self_intersections reports such a
+/// triangle as intersecting itself, and only so.
+bool triangle_is_degenerate(const TrianglePoints& t);
+
 bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, const TrianglePoints& b,
                          const std::array<int, 3>& ib);
 
