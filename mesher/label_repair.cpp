@@ -52,8 +52,10 @@ int neighbours_in(int b, int mask) {
 struct Block {
   std::array<std::int32_t, 8> label{};
   std::array<long long, 8> index{};  ///< voxel index into the image, -1 for padding
+  int I = 0, J = 0, K = 0;           ///< the lattice point
 
-  void load(const LabelImage& img, int I, int J, int K) {
+  void load(const LabelImage& img, int I_, int J_, int K_) {
+    I = I_, J = J_, K = K_;
     for (int b = 0; b < 8; ++b) {
       const int i = I - 1 + (b & 1), j = J - 1 + (b >> 1 & 1), k = K - 1 + (b >> 2);
       const bool inside = i >= 0 && j >= 0 && k >= 0 && i < img.dims[0] && j < img.dims[1] && k < img.dims[2];
@@ -72,6 +74,39 @@ struct Block {
       if (label[b] == a) m |= 1 << b;
     return m;
   }
+};
+
+/// Lattice points whose block may hold a defect: all at first, then those with a voxel changed
+/// since their block was last found sound. A block not marked is as it was when found sound, so a
+/// pass that skips it does what a full pass would do there (nothing).
+class DirtyBlocks {
+ public:
+  explicit DirtyBlocks(const std::array<int, 3>& dims)
+      : nx_(dims[0] + 1), ny_(dims[1] + 1), flags_(static_cast<std::size_t>(nx_) * ny_ * (dims[2] + 1), 1) {}
+  /// Whether (I, J, K) is marked; clears the mark.
+  bool take(int I, int J, int K) {
+    char& f = flags_[at(I, J, K)];
+    const bool was = f != 0;
+    f = 0;
+    return was;
+  }
+  void mark(int I, int J, int K) { flags_[at(I, J, K)] = 1; }
+  /// Voxel b of `block` changed: marks the eight blocks holding it.
+  void mark_voxel(const Block& block, int b) {
+    const int i = block.I - 1 + (b & 1), j = block.J - 1 + (b >> 1 & 1), k = block.K - 1 + (b >> 2);
+    for (int dk = 0; dk < 2; ++dk)
+      for (int dj = 0; dj < 2; ++dj)
+        for (int di = 0; di < 2; ++di) mark(i + di, j + dj, k + dk);
+  }
+  bool any() const { return std::find(flags_.begin(), flags_.end(), 1) != flags_.end(); }
+
+ private:
+  std::size_t at(int I, int J, int K) const {
+    return static_cast<std::size_t>(I) +
+           static_cast<std::size_t>(nx_) * (static_cast<std::size_t>(J) + static_cast<std::size_t>(ny_) * static_cast<std::size_t>(K));
+  }
+  int nx_, ny_;
+  std::vector<char> flags_;
 };
 
 /// First region of the block that is split, or whose complement is split, inside it; its mask in
@@ -111,11 +146,12 @@ std::vector<int> split(int mask) {
   return parts;
 }
 
-void set_voxels(Block& block, int mask, std::int32_t label, LabelImage& img, std::size_t& changed) {
+void set_voxels(Block& block, int mask, std::int32_t label, LabelImage& img, std::size_t& changed, DirtyBlocks& dirty) {
   for (int b = 0; b < 8; ++b)
     if (mask >> b & 1) {
       block.label[b] = label;
       img.labels[static_cast<std::size_t>(block.index[b])] = label;
+      dirty.mark_voxel(block, b);
       ++changed;
     }
 }
@@ -138,7 +174,7 @@ std::int32_t highest_neighbour(const Block& block, int part, int mask) {
 
 /// One relabelling that reduces the defect of region `mask`; every change raises a voxel's label,
 /// which bounds the number of changes (termination). False when no such change exists.
-bool fix_defect(Block& block, int mask, LabelImage& img, std::size_t& changed) {
+bool fix_defect(Block& block, int mask, LabelImage& img, std::size_t& changed, DirtyBlocks& dirty) {
   const std::int32_t region = block.label[__builtin_ctz(static_cast<unsigned>(mask))];
   const int others = ~mask & 255;
   if (components()[mask] > 1) {
@@ -149,11 +185,11 @@ bool fix_defect(Block& block, int mask, LabelImage& img, std::size_t& changed) {
       const int score = neighbours_in(b, mask);
       if (score > best_score) best = b, best_score = score;
     }
-    if (best >= 0) return set_voxels(block, 1 << best, region, img, changed), true;
+    if (best >= 0) return set_voxels(block, 1 << best, region, img, changed, dirty), true;
     // Else the smallest piece of the region joins its highest neighbour (all neighbours are higher).
     for (int part : split(mask)) {
       const std::int32_t to = highest_neighbour(block, part, mask);
-      if (to > region && in_image(block, part)) return set_voxels(block, part, to, img, changed), true;
+      if (to > region && in_image(block, part)) return set_voxels(block, part, to, img, changed, dirty), true;
     }
     return false;
   }
@@ -167,12 +203,12 @@ bool fix_defect(Block& block, int mask, LabelImage& img, std::size_t& changed) {
     const int score = neighbours_in(b, others);
     if (to > region && score > best_score) best = b, best_score = score, best_label = to;
   }
-  if (best >= 0) return set_voxels(block, 1 << best, best_label, img, changed), true;
+  if (best >= 0) return set_voxels(block, 1 << best, best_label, img, changed, dirty), true;
   // ... else the smallest piece of the complement (all lower-labelled) is filled with the region.
   for (int part : split(others)) {
     bool lower = in_image(block, part);
     for (int b = 0; b < 8; ++b) lower = lower && (!(part >> b & 1) || block.label[b] < region);
-    if (lower) return set_voxels(block, part, region, img, changed), true;
+    if (lower) return set_voxels(block, part, region, img, changed, dirty), true;
   }
   return false;
 }
@@ -182,6 +218,7 @@ bool fix_defect(Block& block, int mask, LabelImage& img, std::size_t& changed) {
 LabelRepairResult make_well_composed(LabelImage& ids, int max_passes) {
   LabelRepairResult result;
   const auto& d = ids.dims;
+  DirtyBlocks dirty(d);
   while (true) {
     if (result.passes >= max_passes)
       throw MeshingError("non-manifold voxel configurations remain after " + std::to_string(max_passes) +
@@ -192,16 +229,21 @@ LabelRepairResult make_well_composed(LabelImage& ids, int max_passes) {
     for (int K = 0; K <= d[2]; ++K)
       for (int J = 0; J <= d[1]; ++J)
         for (int I = 0; I <= d[0]; ++I) {
+          if (!dirty.take(I, J, K)) continue;
           block.load(ids, I, J, K);
           if (block.uniform()) continue;
           int mask = 0;
-          for (int guard = 0; guard < 16 && find_defect(block, mask); ++guard)
-            if (!fix_defect(block, mask, ids, changed)) break;
+          bool defect = false;
+          for (int guard = 0; guard < 16 && (defect = find_defect(block, mask)); ++guard)
+            if (!fix_defect(block, mask, ids, changed, dirty)) break;
+          if (defect) dirty.mark(I, J, K);  // not (yet) repaired: the next pass looks again
         }
     result.relabelled_voxels += changed;
     if (changed == 0) break;
   }
-  if (!is_well_composed(ids))
+  // After a pass without changes every block still marked holds a defect no change can fix, and
+  // every other block is sound (what is_well_composed would find, without another pass).
+  if (dirty.any())
     throw MeshingError("non-manifold voxel configurations at the image border cannot be repaired by relabelling");
   return result;
 }
