@@ -14,7 +14,7 @@
 
 #include <Eigen/Core>
 
-#include <map>
+#include <unordered_map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -71,7 +71,8 @@ TetMesh cells(const C3t3& c3t3, const ToPhysical& to_physical, bool reflect, con
   using Vertex_handle = typename C3t3::Triangulation::Vertex_handle;
   TetMesh mesh;
   mesh.tissue_names = names;
-  std::map<Vertex_handle, int> vindex;
+  std::unordered_map<Vertex_handle, int> vindex;  // numbering by first use, as the loop below meets them
+  vindex.reserve(c3t3.triangulation().number_of_vertices());
   for (auto cit = c3t3.cells_in_complex_begin(); cit != c3t3.cells_in_complex_end(); ++cit) {
     std::array<int, 4> tet{};
     for (int q = 0; q < 4; ++q) {
