@@ -50,17 +50,24 @@ std::vector<char> side_mask(const Model& m, const InterfaceSide& side, const std
 std::vector<std::array<int, 2>> faces_between(const Model& m, const InterfaceSide& a, const InterfaceSide& b,
                                               const std::string& set_name) {
   const std::vector<char> in_a = side_mask(m, a, set_name), in_b = side_mask(m, b, set_name);
-  // Pair every face with its neighbour across it (or none on the boundary).
-  std::map<std::array<int, 3>, std::array<int, 2>> first;
-  std::vector<std::array<int, 2>> neighbour(m.elements.size() * 4, {-1, -1});
+  // Pair every face with its neighbour across it (or none on the boundary): faces sorted by key,
+  // then by position, so equal keys are adjacent. In a conforming mesh a key occurs at most twice;
+  // otherwise every later face gets the first as neighbour and the first the last.
+  std::vector<std::pair<std::array<int, 3>, std::size_t>> faces;  // key, 4 e + f
+  faces.reserve(m.elements.size() * 4);
   for (std::size_t e = 0; e < m.elements.size(); ++e)
-    for (int f = 0; f < 4; ++f) {
-      auto [it, inserted] = first.emplace(face_key(m, e, f), std::array<int, 2>{static_cast<int>(e), f});
-      if (!inserted) {
-        neighbour[e * 4 + f] = it->second;
-        neighbour[static_cast<std::size_t>(it->second[0]) * 4 + it->second[1]] = {static_cast<int>(e), f};
-      }
+    for (int f = 0; f < 4; ++f) faces.emplace_back(face_key(m, e, f), e * 4 + static_cast<std::size_t>(f));
+  std::sort(faces.begin(), faces.end());
+  auto face_of = [](std::size_t slot) { return std::array<int, 2>{static_cast<int>(slot / 4), static_cast<int>(slot % 4)}; };
+  std::vector<std::array<int, 2>> neighbour(m.elements.size() * 4, {-1, -1});
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i + 1;
+    for (; j < faces.size() && faces[j].first == faces[i].first; ++j) {
+      neighbour[faces[j].second] = face_of(faces[i].second);
+      neighbour[faces[i].second] = face_of(faces[j].second);
     }
+    i = j;
+  }
   // Keep the face on side A's element so that its outward normal points from A to B.
   std::vector<std::array<int, 2>> out;
   for (std::size_t e = 0; e < m.elements.size(); ++e) {
