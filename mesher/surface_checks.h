@@ -54,12 +54,15 @@ struct SurfaceCheckReport {
 SurfaceCheckReport check_surface(const TriSurface& surface, std::vector<int>* intersecting = nullptr);
 
 /// check_surface(surface, intersecting) after moving points only: `previous` and
-/// `previous_intersecting` are the report and intersecting triangles of the same triangles before
-/// the points listed in `moved` changed, and every triangle of `previous_intersecting` must have a
-/// moved vertex (else std::invalid_argument). Then only pairs with a triangle touching a moved
+/// `previous_intersecting` are the report and the complete intersecting-triangle list (as
+/// check_surface or this function returned them, not a subset) of the same triangles before the
+/// points listed in `moved` changed, and every triangle of `previous_intersecting` must have a
+/// moved vertex (else std::invalid_argument; a subset cannot be detected and gives wrong counts). Then only pairs with a triangle touching a moved
 /// vertex can have changed, and only those are tested (the extraction's unfolding moves a few
 /// vertices of a 400K-triangle surface: a full check costs ~0.45 s there). Same result as
 /// check_surface, including the intersecting-pair counts (same rule, mesher/triangle_intersection.h).
+/// Cost: each tissue triangle inside the box of all changed ones is box-tested against each
+/// changed one, so it suits a few scattered moves (the unfolding's tens), not thousands.
 SurfaceCheckReport recheck_after_moves(const TriSurface& surface, const SurfaceCheckReport& previous,
                                        const std::vector<int>& previous_intersecting, const std::vector<int>& moved,
                                        std::vector<int>* intersecting = nullptr);
