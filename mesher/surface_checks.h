@@ -53,14 +53,15 @@ struct SurfaceCheckReport {
 /// intersecting pair of some tissue's boundary.
 SurfaceCheckReport check_surface(const TriSurface& surface, std::vector<int>* intersecting = nullptr);
 
-/// check_surface(surface, intersecting) after moving points only: `previous` and
+/// check_surface(surface, intersecting) after moving points only. `previous` and
 /// `previous_intersecting` are the report and the complete intersecting-triangle list (as
 /// check_surface or this function returned them, not a subset) of the same triangles before the
-/// points listed in `moved` changed, and every triangle of `previous_intersecting` must have a
-/// moved vertex (else std::invalid_argument; a subset cannot be detected and gives wrong counts). Then only pairs with a triangle touching a moved
-/// vertex can have changed, and only those are tested (the extraction's unfolding moves a few
-/// vertices of a 400K-triangle surface: a full check costs ~0.45 s there). Same result as
-/// check_surface, including the intersecting-pair counts (same rule, mesher/triangle_intersection.h).
+/// points listed in `moved` changed; every triangle of `previous_intersecting` must have a moved
+/// vertex (else std::invalid_argument; a subset cannot be detected and gives wrong counts). Then
+/// only pairs with a triangle touching a moved vertex can have changed, and only those are tested
+/// (the extraction's unfolding moves a few vertices of a 400K-triangle surface: a full check costs
+/// ~0.45 s there). Same result as check_surface, including the intersecting-pair counts (same
+/// rule, mesher/triangle_intersection.h).
 /// Cost: each tissue triangle inside the box of all changed ones is box-tested against each
 /// changed one, so it suits a few scattered moves (the unfolding's tens), not thousands.
 SurfaceCheckReport recheck_after_moves(const TriSurface& surface, const SurfaceCheckReport& previous,
