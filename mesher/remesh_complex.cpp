@@ -295,19 +295,29 @@ bool RemeshComplex::would_intersect(const std::vector<int>& replaced) {
   for (std::size_t i = 0; i < created.size(); ++i)
     for (std::size_t j = i + 1; j < created.size(); ++j)
       if (triangles_intersect(created[i].p, created[i].v, created[j].p, created[j].v)) return true;
-  if (seen_.size() < tri_.size()) seen_.resize(tri_.size(), 0);
+  if (created.empty()) return false;
+  // One grid query over the union of the created triangles' boxes, each live triangle met there
+  // tested once against every created triangle whose box it touches: the same pairs as a query
+  // per created triangle, without visiting a candidate once per created triangle.
+  created_boxes_.clear();
+  Eigen::AlignedBox3d all;
   for (const NewTriangle& c : created) {
-    ++stamp_;
-    for (int t : replaced) seen_[t] = stamp_;
-    const Eigen::AlignedBox3d box = box_of(c.p);
-    candidates_.clear();
-    grid_.query(box, candidates_);
-    for (int u : candidates_) {
-      if (seen_[u] == stamp_ || !tri_alive_[u]) continue;
-      seen_[u] = stamp_;
-      const TrianglePoints q{x_[tri_[u][0]], x_[tri_[u][1]], x_[tri_[u][2]]};
-      if (box.intersects(box_of(q)) && triangles_intersect(c.p, c.v, q, tri_[u])) return true;
-    }
+    created_boxes_.push_back(box_of(c.p));
+    all.extend(created_boxes_.back());
+  }
+  if (seen_.size() < tri_.size()) seen_.resize(tri_.size(), 0);
+  ++stamp_;
+  for (int t : replaced) seen_[t] = stamp_;
+  candidates_.clear();
+  grid_.query(all, candidates_);
+  for (int u : candidates_) {
+    if (seen_[u] == stamp_ || !tri_alive_[u]) continue;
+    seen_[u] = stamp_;
+    const TrianglePoints q{x_[tri_[u][0]], x_[tri_[u][1]], x_[tri_[u][2]]};
+    const Eigen::AlignedBox3d box = box_of(q);
+    if (!box.intersects(all)) continue;
+    for (std::size_t i = 0; i < created.size(); ++i)
+      if (box.intersects(created_boxes_[i]) && triangles_intersect(created[i].p, created[i].v, q, tri_[u])) return true;
   }
   return false;
 }

@@ -224,6 +224,7 @@ class RemeshComplex {
   std::vector<unsigned> seen_;  ///< per triangle: stamp of the last would_intersect() visit
   unsigned stamp_ = 0;
   std::vector<int> candidates_;
+  std::vector<Eigen::AlignedBox3d> created_boxes_;  ///< scratch of would_intersect(): boxes of created_
   std::vector<NewTriangle> created_;  ///< scratch: the triangles an operation would create
   std::vector<Vector3d> x_;
   std::vector<Kind> kind_;

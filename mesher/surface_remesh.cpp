@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 namespace tissuemesh {
 namespace {
@@ -25,6 +27,12 @@ constexpr int kAngleSmoothingPasses = 40;
 /// (0.5: below the collapse threshold 4/5 with margin; 0.65 gave the same phantom meshes.) From
 /// the second round on: the first coarsens the fine extraction and leaves nothing converged.
 constexpr double kStuckBelow = 0.5;
+
+std::string format_mm(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3f", v);
+  return buffer;
+}
 
 }  // namespace
 
@@ -57,6 +65,8 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     m.split_long();
     m.flip_all();
     m.relax();
+    stage.note("round " + std::to_string(it + 1) + "/" + std::to_string(rounds) + ": " + std::to_string(m.vertices()) +
+               " vertices at edge length L " + format_mm(m.L) + " mm");
     if (budget && (it == rounds / 3 || it == 2 * rounds / 3))
       m.L *= std::sqrt(static_cast<double>(m.vertices()) / static_cast<double>(target));
   }
@@ -83,6 +93,8 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     }
   };
   smooth_until_still();
+  stage.note("budget met (" + std::to_string(m.vertices()) + " vertices), flips, relaxation, " +
+             std::to_string(smoothed) + " angle-improving moves");
   // A poor triangle no move could fix may get better by splitting its longest edge (split_poor);
   // the budget is then met again and the smoothing repeats. Measured on the phantom: one split at
   // 21K (P30 6 -> 2 angles, Q_min 0.445 -> 0.501), none at 2.1K.

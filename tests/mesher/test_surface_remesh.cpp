@@ -16,6 +16,8 @@
 
 #include <cmath>
 #include <set>
+#include <string>
+#include <vector>
 
 using namespace tissuemesh;
 using namespace tissuemesh::test;
@@ -71,6 +73,28 @@ TEST(SurfaceRemesh, NestedSpheresMeetTheBudgetClosedAndCloseToTheInput) {
   const SurfaceProjection on_remeshed(r.surface);
   const SurfaceDistance d = hausdorff_distance(r.surface, on_remeshed, input, on_input);
   EXPECT_LE(d.symmetric_mm(), kRemeshHausdorffVoxelDiagonals * diagonal);
+}
+
+TEST(SurfaceRemesh, ReportsEveryRoundAndTheBudgetAsProgressNotes) {
+  // A long stage shows where it is: one note per round with the vertex count and the edge length
+  // L (mm) it worked at, then one when the budget is met.
+  const LabelImage img = nested_spheres();
+  const TriSurface input = extract(img, 2).surface;
+  const SurfaceProjection on_input(input);
+  std::vector<std::string> notes;
+  Progress progress([&](Progress::Event e, const std::string& stage, const std::string& text, double) {
+    if (e == Progress::Event::Note && stage == "surface remeshing") notes.push_back(text);
+  });
+  RemeshOptions options;
+  options.target_vertices = 300;
+  options.iterations = 4;
+  remesh_surface(input, on_input, options, progress);
+  ASSERT_EQ(notes.size(), 5u);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(notes[k].rfind("round " + std::to_string(k + 1) + "/4: ", 0), 0u) << notes[k];
+    EXPECT_NE(notes[k].find(" mm"), std::string::npos) << notes[k];
+  }
+  EXPECT_EQ(notes[4].rfind("budget met (300 vertices)", 0), 0u) << notes[4];
 }
 
 TEST(SurfaceRemesh, ThinShellStaysIntersectionFreeAtCoarseBudgets) {
