@@ -104,6 +104,10 @@ class RemeshComplex {
   /// collapses have converged, so that the short edges left are the ones the corners and guards
   /// keep.
   void grade_stuck_edges(double below);
+  /// Enters the shortest edge of every triangle with an angle under `min_angle_rad` into the size
+  /// cap (its length at its midpoint, reaching up to 2 L), so that the next rounds remesh finer
+  /// around what the polish could not fix. Returns the triangles entered.
+  std::size_t cap_poor_triangles(double min_angle_rad);
 
   /// Collapses the relatively shortest or splits the relatively longest edges until the vertex
   /// count is `target`; false when it cannot get there (every candidate refused, even with the

@@ -221,6 +221,24 @@ bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
   return best_angle > before && try_move(v, best, true);
 }
 
+std::size_t RemeshComplex::cap_poor_triangles(double min_angle_rad) {
+  std::size_t n = 0;
+  for (std::size_t t = 0; t < tri_.size(); ++t) {
+    if (!tri_alive_[t]) continue;
+    const auto& q = tri_[t];
+    if (!(min_angle(x_[q[0]], x_[q[1]], x_[q[2]]) < min_angle_rad)) continue;
+    int shortest = 0;
+    for (int i = 1; i < 3; ++i)
+      if ((x_[q[(i + 1) % 3]] - x_[q[i]]).squaredNorm() < (x_[q[(shortest + 1) % 3]] - x_[q[shortest]]).squaredNorm())
+        shortest = i;
+    const Vector3d& a = x_[q[shortest]];
+    const Vector3d& b = x_[q[(shortest + 1) % 3]];
+    cap_.add(0.5 * (a + b), (a - b).norm(), 2.0 * L);
+    ++n;
+  }
+  return n;
+}
+
 void RemeshComplex::grade_stuck_edges(double below) {
   for (const auto& e : edges()) {
     if (kind_[e[0]] == Kind::Surface || kind_[e[1]] == Kind::Surface) continue;

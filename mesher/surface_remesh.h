@@ -9,7 +9,12 @@
 // then angle-improving smoothing of the vertices of triangles with an angle under 30 degrees
 // (towards the neighbours' mean, else the best position a pattern search over the patch finds).
 // From the second round on, h is capped near junction edges that stay far shorter than h (fixed
-// corners close together, guards): mesher/graded_size_cap.h.
+// corners close together, guards): mesher/graded_size_cap.h. Repair: when the polished result
+// still has an angle under 30 degrees, a copy caps h around each such triangle's shortest edge,
+// runs two more rounds and the budget and polish again, and is kept only when its smallest angle
+// and Q_min are both no worse (and one of them, or P30, better); otherwise the polished result is
+// returned unchanged. Progress: a note per round (vertices, L in mm), after the polish and after a
+// repair.
 // Validity: no operation is applied that would make two triangles intersect (an exact guard,
 // mesher/remesh_complex.h), so a valid input gives an intersection-free result at any budget; the
 // result is checked again (mesher/surface_checks.h) and the checks returned, the caller decides.
