@@ -50,6 +50,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
                             Progress& progress) {
   if (options.target_vertices <= 0 && !(options.target_edge_mm > 0.0))
     throw InputError("surface remeshing needs a vertex budget or a target edge length");
+  auto stage = progress.stage("surface remeshing");  // from the complex's construction on
   RemeshComplex m(input, projection, options);
   const bool budget = options.target_vertices > 0;
   const std::size_t target = budget ? static_cast<std::size_t>(options.target_vertices) : 0;
@@ -61,7 +62,6 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   } else {
     m.L = options.target_edge_mm;
   }
-  auto stage = progress.stage("surface remeshing");
   // One round: collapse until stable (the first rounds coarsen a fine extraction by a large
   // factor; at 21K, 183,803 of the 203,882 vertices go), dropping the dead vertices and triangles
   // after each sweep; then split, flip, relax.
