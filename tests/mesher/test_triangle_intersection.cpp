@@ -3,7 +3,12 @@
 // (no tolerance: the predicates are exact).
 #include "mesher/triangle_intersection.h"
 
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/intersections.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
 
 using namespace tissuemesh;
 using Eigen::Vector3d;
@@ -42,4 +47,38 @@ TEST(TriangleIntersection, SharedEdgeOnlyWhenFoldedFlatOntoEachOther) {
 TEST(TriangleIntersection, TheSameTriangleTwiceIntersects) {
   const TrianglePoints a = tri({0, 0, 0}, {4, 0, 0}, {0, 4, 0});
   EXPECT_TRUE(triangles_intersect(a, {0, 1, 2}, tri({4, 0, 0}, {0, 4, 0}, {0, 0, 0}), {1, 2, 0}));
+}
+
+TEST(TriangleIntersection, NearlyCoplanarCasesAgreeWithExactArithmetic) {
+  // The guard decides a point's side of a plane in double arithmetic only when an error bound
+  // proves the sign. Here the far edge of a fan neighbour lies in the other triangle's plane up
+  // to round-off (its corners built from the plane's own vectors, then nudged by a few ulps), where
+  // double arithmetic alone gets signs wrong; every answer must equal the rule evaluated with
+  // exact rational arithmetic (CGAL's Epeck, an independent evaluation of the same rule).
+  using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
+  auto ep = [](const Vector3d& p) { return Exact::Point_3(p.x(), p.y(), p.z()); };
+  auto edge_meets = [&](const Vector3d& p, const Vector3d& q, const TrianglePoints& t) {
+    return CGAL::do_intersect(Exact::Segment_3(ep(p), ep(q)), Exact::Triangle_3(ep(t[0]), ep(t[1]), ep(t[2])));
+  };
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> coord(-50.0, 50.0), weight(-0.5, 1.5);
+  std::uniform_int_distribution<int> ulps(-4, 4);
+  int intersecting = 0, separate = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vector3d s(coord(rng), coord(rng), coord(rng));
+    const TrianglePoints b = tri(s, {coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), coord(rng)});
+    auto on_plane = [&] {
+      Vector3d p = s + weight(rng) * (b[1] - s) + weight(rng) * (b[2] - s);
+      for (int i = 0; i < 3; ++i)
+        for (int n = ulps(rng); n != 0; n += n > 0 ? -1 : 1) p[i] = std::nextafter(p[i], n > 0 ? INFINITY : -INFINITY);
+      return p;
+    };
+    const TrianglePoints a = tri(s, on_plane(), on_plane());
+    const bool exact = edge_meets(a[1], a[2], b) || edge_meets(b[1], b[2], a);
+    ASSERT_EQ(triangles_intersect(a, {0, 1, 2}, b, {0, 3, 4}), exact) << "case " << k;
+    (exact ? intersecting : separate) += 1;
+  }
+  // Both outcomes occur, so neither a guard that always says "intersect" nor one that never does passes.
+  EXPECT_GT(intersecting, 1000);
+  EXPECT_GT(separate, 1000);
 }
