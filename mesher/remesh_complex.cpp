@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 
 namespace tissuemesh {
@@ -292,19 +293,23 @@ bool RemeshComplex::try_move(int v, const Vector3d& p, bool handoff) {
 
 bool RemeshComplex::would_intersect(const std::vector<int>& replaced) {
   const std::vector<NewTriangle>& created = created_;
-  for (std::size_t i = 0; i < created.size(); ++i)
-    for (std::size_t j = i + 1; j < created.size(); ++j)
-      if (triangles_intersect(created[i].p, created[i].v, created[j].p, created[j].v)) return true;
   if (created.empty()) return false;
-  // One grid query over the union of the created triangles' boxes, each live triangle met there
-  // tested once against every created triangle whose box it touches: the same pairs as a query
-  // per created triangle, without visiting a candidate once per created triangle.
   created_boxes_.clear();
+  created_planes_.clear();
   Eigen::AlignedBox3d all;
   for (const NewTriangle& c : created) {
     created_boxes_.push_back(box_of(c.p));
+    created_planes_.emplace_back(c.p);
     all.extend(created_boxes_.back());
   }
+  for (std::size_t i = 0; i < created.size(); ++i)
+    for (std::size_t j = i + 1; j < created.size(); ++j)
+      if (triangles_intersect(created[i].p, created[i].v, created_planes_[i], created[j].p, created[j].v,
+                              created_planes_[j]))
+        return true;
+  // One grid query over the union of the created triangles' boxes, each live triangle met there
+  // tested once against every created triangle whose box it touches: the same pairs as a query
+  // per created triangle, without visiting a candidate once per created triangle.
   if (seen_.size() < tri_.size()) seen_.resize(tri_.size(), 0);
   ++stamp_;
   for (int t : replaced) seen_[t] = stamp_;
@@ -316,8 +321,12 @@ bool RemeshComplex::would_intersect(const std::vector<int>& replaced) {
     const TrianglePoints q{x_[tri_[u][0]], x_[tri_[u][1]], x_[tri_[u][2]]};
     const Eigen::AlignedBox3d box = box_of(q);
     if (!box.intersects(all)) continue;
-    for (std::size_t i = 0; i < created.size(); ++i)
-      if (box.intersects(created_boxes_[i]) && triangles_intersect(created[i].p, created[i].v, q, tri_[u])) return true;
+    std::optional<TrianglePlane> plane;  // built at the first created triangle whose box u touches
+    for (std::size_t i = 0; i < created.size(); ++i) {
+      if (!box.intersects(created_boxes_[i])) continue;
+      if (!plane) plane.emplace(q);
+      if (triangles_intersect(created[i].p, created[i].v, created_planes_[i], q, tri_[u], *plane)) return true;
+    }
   }
   return false;
 }

@@ -26,4 +26,26 @@ bool triangle_is_degenerate(const TrianglePoints& t);
 bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, const TrianglePoints& b,
                          const std::array<int, 3>& ib);
 
+/// The plane of a triangle, prepared for exact side tests of many points: side(p) is the sign of
+/// CGAL::orientation(t[0], t[1], t[2], p), taken from double arithmetic with the normal computed
+/// once when Shewchuk's forward error bound for orient3d proves it, else from CGAL's exact
+/// predicate; the answer is CGAL's in every case.
+class TrianglePlane {
+ public:
+  explicit TrianglePlane(const TrianglePoints& t);
+  /// +1, -1, or 0 (coplanar), exact.
+  int side(const Eigen::Vector3d& p) const;
+  /// True when p and q lie strictly on the same side (exact): segment pq misses the plane.
+  bool strictly_one_side(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const;
+
+ private:
+  TrianglePoints t_;
+  Eigen::Vector3d normal_, magnitude_;
+};
+
+/// The same, with both triangles' planes already built (a caller testing one triangle against
+/// many builds its plane once). plane_a must be TrianglePlane(a), plane_b TrianglePlane(b).
+bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, const TrianglePlane& plane_a,
+                         const TrianglePoints& b, const std::array<int, 3>& ib, const TrianglePlane& plane_b);
+
 }  // namespace tissuemesh

@@ -4,6 +4,7 @@
 #include "mesher/triangle_intersection.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/intersections.h>
 #include <gtest/gtest.h>
 
@@ -81,4 +82,37 @@ TEST(TriangleIntersection, NearlyCoplanarCasesAgreeWithExactArithmetic) {
   // Both outcomes occur, so neither a guard that always says "intersect" nor one that never does passes.
   EXPECT_GT(intersecting, 1000);
   EXPECT_GT(separate, 1000);
+}
+
+TEST(TriangleIntersection, PlaneSideIsCgalsExactOrientation) {
+  // TrianglePlane::side against CGAL's exact orientation on points off the plane by 0-4 ulps per
+  // coordinate (where the double filter must give way) and far off it (where it decides).
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> coord(-50.0, 50.0), weight(-0.5, 1.5), offset(-1.0, 1.0);
+  std::uniform_int_distribution<int> ulps(-4, 4);
+  int coplanar = 0, decided = 0;
+  std::uniform_int_distribution<int> integer(-50, 50);
+  auto on_tilted_plane = [&] {  // z = x + 2y with integers: exactly coplanar, exactly representable
+    const double x = integer(rng), y = integer(rng);
+    return Vector3d(x, y, x + 2.0 * y);
+  };
+  for (int k = 0; k < 20000; ++k) {
+    TrianglePoints t = tri({coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), coord(rng)},
+                           {coord(rng), coord(rng), coord(rng)});
+    Vector3d p = t[0] + weight(rng) * (t[1] - t[0]) + weight(rng) * (t[2] - t[0]);
+    if (k % 4 == 3)
+      t = tri(on_tilted_plane(), on_tilted_plane(), on_tilted_plane()), p = on_tilted_plane();
+    else if (k % 2)
+      for (int i = 0; i < 3; ++i)
+        for (int n = ulps(rng); n != 0; n += n > 0 ? -1 : 1) p[i] = std::nextafter(p[i], n > 0 ? INFINITY : -INFINITY);
+    else
+      p += Vector3d(offset(rng), offset(rng), offset(rng));
+    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+    auto kp = [](const Vector3d& v) { return K::Point_3(v.x(), v.y(), v.z()); };
+    const int exact = static_cast<int>(CGAL::orientation(kp(t[0]), kp(t[1]), kp(t[2]), kp(p)));
+    ASSERT_EQ(TrianglePlane(t).side(p), exact) << "case " << k;
+    (exact == 0 ? coplanar : decided) += 1;
+  }
+  EXPECT_GT(coplanar, 0);  // exactly coplanar points occur, so a filter that never says 0 fails
+  EXPECT_GT(decided, 10000);
 }
