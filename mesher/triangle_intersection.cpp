@@ -14,9 +14,9 @@ using Point = Kernel::Point_3;
 Point point(const Eigen::Vector3d& p) { return Point(p[0], p[1], p[2]); }
 
 /// True when segment pq meets the closed triangle t (exact), the one-side rejection first.
-bool segment_meets(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const TrianglePlane& plane, const TrianglePoints& t) {
-  return !plane.strictly_one_side(p, q) &&
-         CGAL::do_intersect(Kernel::Segment_3(point(p), point(q)), Kernel::Triangle_3(point(t[0]), point(t[1]), point(t[2])));
+/// True when segment pq meets the closed triangle t (exact).
+bool segment_meets(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const TrianglePoints& t) {
+  return CGAL::do_intersect(Kernel::Segment_3(point(p), point(q)), Kernel::Triangle_3(point(t[0]), point(t[1]), point(t[2])));
 }
 
 }  // namespace
@@ -73,8 +73,13 @@ bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, 
     int i = 0;
     while (in_b[i] < 0) ++i;
     const int j = in_b[i];
-    return segment_meets(a[(i + 1) % 3], a[(i + 2) % 3], plane_b, b) ||
-           segment_meets(b[(j + 1) % 3], b[(j + 2) % 3], plane_a, a);
+    const Eigen::Vector3d &a1 = a[(i + 1) % 3], &a2 = a[(i + 2) % 3], &b1 = b[(j + 1) % 3], &b2 = b[(j + 2) % 3];
+    // When a1 and a2 lie strictly on one side of b's plane, a meets that plane only in the shared
+    // vertex, so neither a1a2 nor b1b2 (in b's plane, not through b's own vertex: b is not
+    // degenerate, or its plane would have no strict side) can meet the other triangle; the same
+    // with a and b swapped. Only when neither holds are the two edges tested.
+    if (plane_b.strictly_one_side(a1, a2) || plane_a.strictly_one_side(b1, b2)) return false;
+    return segment_meets(a1, a2, b) || segment_meets(b1, b2, a);
   }
   // A shared edge (p, q); r and s the other vertices.
   int i = 0;
