@@ -318,20 +318,27 @@ bool RemeshComplex::would_intersect(const std::vector<int>& replaced) {
   for (int u : candidates_) {
     if (seen_[u] == stamp_ || !tri_alive_[u]) continue;
     seen_[u] = stamp_;
-    const TrianglePoints q{x_[tri_[u][0]], x_[tri_[u][1]], x_[tri_[u][2]]};
-    const Eigen::AlignedBox3d box = box_of(q);
+    const Eigen::AlignedBox3d& box = tri_box_[u];
     if (!box.intersects(all)) continue;
-    std::optional<TrianglePlane> plane;  // built at the first created triangle whose box u touches
+    std::optional<TrianglePoints> q;
+    std::optional<TrianglePlane> plane;  // both built at the first created triangle whose box u touches
     for (std::size_t i = 0; i < created.size(); ++i) {
       if (!box.intersects(created_boxes_[i])) continue;
-      if (!plane) plane.emplace(q);
-      if (triangles_intersect(created[i].p, created[i].v, created_planes_[i], q, tri_[u], *plane)) return true;
+      if (!plane) {
+        q.emplace(TrianglePoints{x_[tri_[u][0]], x_[tri_[u][1]], x_[tri_[u][2]]});
+        plane.emplace(*q);
+      }
+      if (triangles_intersect(created[i].p, created[i].v, created_planes_[i], *q, tri_[u], *plane)) return true;
     }
   }
   return false;
 }
 
-void RemeshComplex::index_triangle(int t) { grid_.insert(t, box_of({x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]})); }
+void RemeshComplex::index_triangle(int t) {
+  if (t >= static_cast<int>(tri_box_.size())) tri_box_.resize(tri_.size());
+  tri_box_[t] = box_of({x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]});
+  grid_.insert(t, tri_box_[t]);
+}
 
 void RemeshComplex::rebuild_grid() {
   // Cells 1.5 times the mean triangle size (kGridCellPerExtent): a query visits a few cells of a

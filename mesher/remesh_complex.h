@@ -224,6 +224,9 @@ class RemeshComplex {
   std::vector<Vector3d> reference_;             ///< the input vertices
   std::vector<std::vector<int>> represents_;    ///< per vertex: input vertices collapsed into it
   TriangleGrid grid_;
+  /// Per triangle: its bounding box when last entered into grid_ (index_triangle; every change of a
+  /// triangle or its vertices re-enters it, and compact() forces a full rebuild).
+  std::vector<Eigen::AlignedBox3d> tri_box_;
   double grid_cell_ = 0.0;      ///< the grid's cell size (0: not built yet, or ids renumbered)
   std::vector<unsigned> seen_;  ///< per triangle: stamp of the last would_intersect() visit
   unsigned stamp_ = 0;
