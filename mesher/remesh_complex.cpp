@@ -24,9 +24,11 @@ constexpr double kFlipFlatCos = 0.906;
 /// its cell size (coarsening grows triangles ~3x over the first rounds).
 constexpr double kGridDrift = 1.5;
 /// Grid cell edge over the mean triangle extent (largest box side): fewer cells per query against
-/// more triangles per cell. Remeshing the 21K phantom (2 runs each, same output): 9.5 s at 0.7,
-/// 8.9 s at 1, 8.45 s at 1.5, 9.1 s at 2, 9.8 s at 3.
-constexpr double kGridCellPerExtent = 1.5;
+/// more triangles per cell. Remeshing the 21K phantom (2 runs each, same output), with one query
+/// per created triangle: 9.5 s at 0.7, 8.9 s at 1, 8.45 s at 1.5, 9.1 s at 2, 9.8 s at 3; with one
+/// query over all of an operation's created triangles (would_intersect): 6.6 s at 1, 6.2 s at 1.5,
+/// 5.9-6.0 s at 2, 5.7-6.0 s at 2.5 and 3, 6.1 s at 3.5, 6.3 s at 5.
+constexpr double kGridCellPerExtent = 2.5;
 /// The approximation bound is at least this fraction of the edge length L.
 constexpr double kDeviationPerEdge = 0.25;
 /// Size cap around stuck edges (mesher/graded_size_cap.h): h = 1.5 times the stuck edge there, so
@@ -341,7 +343,7 @@ void RemeshComplex::index_triangle(int t) {
 }
 
 void RemeshComplex::rebuild_grid() {
-  // Cells 1.5 times the mean triangle size (kGridCellPerExtent): a query visits a few cells of a
+  // Cells 2.5 times the mean triangle size (kGridCellPerExtent): a query visits a few cells of a
   // few triangles each.
   // Every change is entered as it happens, so the grid is only rebuilt when the triangles' size
   // has drifted by more than a factor kGridDrift from the cell size.
