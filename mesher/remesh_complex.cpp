@@ -465,9 +465,11 @@ bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
       }
     for (int v : {a, b})
       for (int r : represents_[v]) {
-        double d = INFINITY;
-        for (const auto& q : ring) d = std::min(d, point_triangle_distance(reference_[r], q[0], q[1], q[2]));
-        if (d > deviation()) return false;
+        // Within the bound of one ring triangle is enough: stop at the first.
+        const bool near = std::any_of(ring.begin(), ring.end(), [&](const std::array<Vector3d, 3>& q) {
+          return point_triangle_distance(reference_[r], q[0], q[1], q[2]) <= deviation();
+        });
+        if (!near) return false;
       }
   }
   // Fidelity: every changed triangle stays close to its patch of the reference and faces the same
