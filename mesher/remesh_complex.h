@@ -158,6 +158,10 @@ class RemeshComplex {
     std::array<int, 3> v;
     TrianglePoints p;
   };
+  /// Live triangles with an angle under `min_angle_rad`, in index order.
+  std::vector<int> poor_triangles(double min_angle_rad) const;
+  /// Position i in q of its longest (else shortest) edge (q[i], q[(i + 1) % 3]); ties: the first.
+  int extreme_edge(const std::array<int, 3>& q, bool longest) const;
   /// Triangle t with vertex v moved to p and renamed `id`.
   NewTriangle moved_triangle(int t, int v, const Vector3d& p, int id) const;
   /// Fills created_ with the triangles of `tris` (skipping `skip`) with v moved to p, renamed id.

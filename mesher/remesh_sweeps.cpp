@@ -67,14 +67,10 @@ std::size_t RemeshComplex::flip_around(const std::vector<int>& vertices) {
 std::size_t RemeshComplex::split_poor(double min_angle_rad, std::vector<int>& added) {
   rebuild_grid();
   std::vector<std::array<int, 2>> longest;
-  for (std::size_t t = 0; t < tri_.size(); ++t) {
-    if (!tri_alive_[t]) continue;
+  for (int t : poor_triangles(min_angle_rad)) {
     const auto& q = tri_[t];
-    if (!(min_angle(x_[q[0]], x_[q[1]], x_[q[2]]) < min_angle_rad)) continue;
-    int best = 0;
-    for (int i = 1; i < 3; ++i)
-      if ((x_[q[(i + 1) % 3]] - x_[q[i]]).squaredNorm() > (x_[q[(best + 1) % 3]] - x_[q[best]]).squaredNorm()) best = i;
-    longest.push_back(undirected(q[best], q[(best + 1) % 3]));
+    const int i = extreme_edge(q, true);
+    longest.push_back(undirected(q[i], q[(i + 1) % 3]));
   }
   sort_unique(longest);
   std::size_t n = 0;
@@ -222,21 +218,30 @@ bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
 }
 
 std::size_t RemeshComplex::cap_poor_triangles(double min_angle_rad) {
-  std::size_t n = 0;
-  for (std::size_t t = 0; t < tri_.size(); ++t) {
-    if (!tri_alive_[t]) continue;
+  const std::vector<int> poor = poor_triangles(min_angle_rad);
+  for (int t : poor) {
     const auto& q = tri_[t];
-    if (!(min_angle(x_[q[0]], x_[q[1]], x_[q[2]]) < min_angle_rad)) continue;
-    int shortest = 0;
-    for (int i = 1; i < 3; ++i)
-      if ((x_[q[(i + 1) % 3]] - x_[q[i]]).squaredNorm() < (x_[q[(shortest + 1) % 3]] - x_[q[shortest]]).squaredNorm())
-        shortest = i;
-    const Vector3d& a = x_[q[shortest]];
-    const Vector3d& b = x_[q[(shortest + 1) % 3]];
+    const int i = extreme_edge(q, false);
+    const Vector3d &a = x_[q[i]], &b = x_[q[(i + 1) % 3]];
     cap_.add(0.5 * (a + b), (a - b).norm(), 2.0 * L);
-    ++n;
   }
-  return n;
+  return poor.size();
+}
+
+std::vector<int> RemeshComplex::poor_triangles(double min_angle_rad) const {
+  std::vector<int> out;
+  for (std::size_t t = 0; t < tri_.size(); ++t)
+    if (tri_alive_[t] && min_angle(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]) < min_angle_rad)
+      out.push_back(static_cast<int>(t));
+  return out;
+}
+
+int RemeshComplex::extreme_edge(const std::array<int, 3>& q, bool longest) const {
+  auto length2 = [&](int i) { return (x_[q[(i + 1) % 3]] - x_[q[i]]).squaredNorm(); };
+  int best = 0;
+  for (int i = 1; i < 3; ++i)
+    if (longest ? length2(i) > length2(best) : length2(i) < length2(best)) best = i;
+  return best;
 }
 
 void RemeshComplex::grade_stuck_edges(double below) {
