@@ -39,4 +39,10 @@ SurfaceQuality surface_quality(const TriSurface& s) {
   return q;
 }
 
+bool improves_table1_minima(const SurfaceQuality& before, const SurfaceQuality& after) {
+  return after.min_angle_deg >= before.min_angle_deg && after.q_min >= before.q_min &&
+         (after.min_angle_deg > before.min_angle_deg || after.q_min > before.q_min ||
+          after.p30_percent < before.p30_percent);
+}
+
 }  // namespace tissuemesh

@@ -29,4 +29,8 @@ struct SurfaceQuality {
 /// triangles count with angle 0 and Q = 0.
 SurfaceQuality surface_quality(const TriSurface& surface);
 
+/// True when `after` is no worse than `before` in smallest angle and Q_min, and better in one of
+/// them or in P30 (the surface remesher keeps a repair only then, mesher/surface_remesh.h).
+bool improves_table1_minima(const SurfaceQuality& before, const SurfaceQuality& after);
+
 }  // namespace tissuemesh

@@ -124,31 +124,37 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   TriSurface result = m.result(input);
   const SurfaceQuality first = surface_quality(result);
   stage.note("budget met (" + std::to_string(m.vertices()) + " vertices), polished: smallest angle " +
-             format_degrees(first.min_angle_deg) + " deg, " + std::to_string(smoothed) + " angle-improving moves");
+             format_degrees(first.min_angle_deg) + " deg, Q_min " + format_fixed(first.q_min, "%.4f") + ", " +
+             std::to_string(smoothed) + " angle-improving moves");
   // Repair of what the polish left under 30 degrees: cap the size around each poor triangle's
   // shortest edge, remesh there again (kRepairRounds rounds) and polish again. The repaired
   // complex is kept only when it is no worse in both the smallest angle and Q_min (so a shipped
   // result never degrades); otherwise the polished one stays, unchanged.
   const RemeshComplex* chosen = &m;
   std::unique_ptr<RemeshComplex> repaired;
-  if (first.p30_percent > 0.0) {
+  if (options.repair && first.p30_percent > 0.0) {
     auto trial = std::make_unique<RemeshComplex>(m);
     const std::size_t capped = trial->cap_poor_triangles(poor);
-    for (int k = 0; k < kRepairRounds; ++k) round(*trial, false);
-    const std::size_t trial_moves = finish(*trial);
-    TriSurface trial_result = trial->result(input);
-    const SurfaceQuality q = surface_quality(trial_result);
-    const bool keep = q.min_angle_deg >= first.min_angle_deg && q.q_min >= first.q_min &&
-                      (q.min_angle_deg > first.min_angle_deg || q.q_min > first.q_min || q.p30_percent < first.p30_percent);
-    stage.note("repair around " + std::to_string(capped) + " triangles under 30 deg: smallest angle " +
-               format_degrees(q.min_angle_deg) + " deg, Q_min " + format_fixed(q.q_min, "%.4f") +
-               (keep ? " (kept)" : " (not better than " + format_degrees(first.min_angle_deg) + " deg, Q_min " +
-                                       format_fixed(first.q_min, "%.4f") + ": discarded)"));
-    if (keep) {
-      repaired = std::move(trial);
-      chosen = repaired.get();
-      result = std::move(trial_result);
-      smoothed = trial_moves;
+    try {
+      for (int k = 0; k < kRepairRounds; ++k) round(*trial, false);
+      const std::size_t trial_moves = finish(*trial);
+      TriSurface trial_result = trial->result(input);
+      const SurfaceQuality q = surface_quality(trial_result);
+      const bool keep = improves_table1_minima(first, q);
+      stage.note("repair around " + std::to_string(capped) + " triangles under 30 deg: smallest angle " +
+                 format_degrees(q.min_angle_deg) + " deg, Q_min " + format_fixed(q.q_min, "%.4f") +
+                 (keep ? " (kept)" : " (not better than " + format_degrees(first.min_angle_deg) + " deg, Q_min " +
+                                         format_fixed(first.q_min, "%.4f") + ": discarded)"));
+      if (keep) {
+        repaired = std::move(trial);
+        chosen = repaired.get();
+        result = std::move(trial_result);
+        smoothed += trial_moves;  // like splits, collapses and flips: every pass that shaped the result
+      }
+    } catch (const MeshingError& e) {
+      // The repair's own budget pass or junction bookkeeping failed: the polished result stands.
+      stage.note("repair around " + std::to_string(capped) + " triangles under 30 deg failed (" + e.what() +
+                 "): discarded");
     }
   }
   RemeshResult r;

@@ -12,9 +12,9 @@
 // corners close together, guards): mesher/graded_size_cap.h. Repair: when the polished result
 // still has an angle under 30 degrees, a copy caps h around each such triangle's shortest edge,
 // runs two more rounds and the budget and polish again, and is kept only when its smallest angle
-// and Q_min are both no worse (and one of them, or P30, better); otherwise the polished result is
-// returned unchanged. Progress: a note per round (vertices, L in mm), after the polish and after a
-// repair.
+// and Q_min are both no worse (and one of them, or P30, better); otherwise (also when the repair
+// itself fails, e.g. cannot meet the budget) the polished result is returned unchanged. Progress:
+// a note per round (vertices, L in mm), after the polish and after a repair.
 // Validity: no operation is applied that would make two triangles intersect (an exact guard,
 // mesher/remesh_complex.h), so a valid input gives an intersection-free result at any budget; the
 // result is checked again (mesher/surface_checks.h) and the checks returned, the caller decides.
@@ -42,6 +42,9 @@ struct RemeshOptions {
   double max_deviation_mm = 0.0;
   /// Relative size s(x) in (0, 1] (the density is 1 / s^2); empty = uniform.
   std::function<double(const Eigen::Vector3d&)> relative_size;
+  /// Try the repair of triangles left under 30 degrees (header comment); false returns the
+  /// polished result as is (what a discarded repair returns too).
+  bool repair = true;
 };
 
 struct RemeshResult {
@@ -49,7 +52,7 @@ struct RemeshResult {
   SurfaceCheckReport checks;    ///< mesher/surface_checks.h of `surface`
   double edge_length_mm = 0.0;  ///< L, the size where s = 1, after the budget rescaling
   std::size_t splits = 0, collapses = 0, flips = 0;
-  std::size_t angle_moves = 0;  ///< vertex moves of the angle-improving smoothing
+  std::size_t angle_moves = 0;  ///< vertex moves of the angle-improving smoothing (a kept repair's included)
 };
 
 /// `input` must be valid and closed per tissue (mesher/surface_checks.h), `projection` built on it.

@@ -13,10 +13,20 @@ using Point = Kernel::Point_3;
 
 Point point(const Eigen::Vector3d& p) { return Point(p[0], p[1], p[2]); }
 
-/// True when segment pq meets the closed triangle t (exact), the one-side rejection first.
 /// True when segment pq meets the closed triangle t (exact).
 bool segment_meets(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const TrianglePoints& t) {
   return CGAL::do_intersect(Kernel::Segment_3(point(p), point(q)), Kernel::Triangle_3(point(t[0]), point(t[1]), point(t[2])));
+}
+
+/// Shewchuk's bound holds without underflow: every component used must be 0 or at least this
+/// (so that products of three stay normal doubles); else the exact predicate decides. Coordinates
+/// in mm never come near it.
+constexpr double kSmallestFiltered = 0x1p-300;
+
+bool filterable(const Eigen::Vector3d& v) {
+  for (int i = 0; i < 3; ++i)
+    if (v[i] != 0.0 && std::abs(v[i]) < kSmallestFiltered) return false;
+  return true;
 }
 
 }  // namespace
@@ -28,17 +38,21 @@ TrianglePlane::TrianglePlane(const TrianglePoints& t) : t_(t) {
   normal_ = {a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x()};
   magnitude_ = {std::abs(a.y() * b.z()) + std::abs(a.z() * b.y()), std::abs(a.z() * b.x()) + std::abs(a.x() * b.z()),
                 std::abs(a.x() * b.y()) + std::abs(a.y() * b.x())};
+  filterable_ = filterable(a) && filterable(b);
 }
 
 int TrianglePlane::side(const Eigen::Vector3d& p) const {
   // Shewchuk (1997): orient3d evaluated in doubles is off by at most (7 + 56 u) u times the
-  // permanent (u = 2^-53); doubled for margin.
+  // permanent (u = 2^-53) when nothing underflows; doubled for margin. An infinite or NaN bound
+  // (overflow) fails both comparisons and falls through to the exact predicate.
   constexpr double kErrorBound = 2.0 * (7.0 + 56.0 * 0x1p-53) * 0x1p-53;
   const Eigen::Vector3d c = p - t_[0];
-  const double det = c.dot(normal_);
-  const double bound = kErrorBound * c.cwiseAbs().dot(magnitude_);
-  if (det > bound) return 1;
-  if (det < -bound) return -1;
+  if (filterable_ && filterable(c)) {
+    const double det = c.dot(normal_);
+    const double bound = kErrorBound * c.cwiseAbs().dot(magnitude_);
+    if (det > bound) return 1;
+    if (det < -bound) return -1;
+  }
   return static_cast<int>(CGAL::orientation(point(t_[0]), point(t_[1]), point(t_[2]), point(p)));
 }
 

@@ -28,8 +28,8 @@ bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, 
 
 /// The plane of a triangle, prepared for exact side tests of many points: side(p) is the sign of
 /// CGAL::orientation(t[0], t[1], t[2], p), taken from double arithmetic with the normal computed
-/// once when Shewchuk's forward error bound for orient3d proves it, else from CGAL's exact
-/// predicate; the answer is CGAL's in every case.
+/// once when Shewchuk's forward error bound for orient3d proves it (and nothing can underflow),
+/// else from CGAL's exact predicate; the answer is CGAL's in every case.
 class TrianglePlane {
  public:
   explicit TrianglePlane(const TrianglePoints& t);
@@ -41,6 +41,7 @@ class TrianglePlane {
  private:
   TrianglePoints t_;
   Eigen::Vector3d normal_, magnitude_;
+  bool filterable_ = false;  ///< edge components far enough from underflow for the double filter
 };
 
 /// The same, with both triangles' planes already built (a caller testing one triangle against

@@ -32,6 +32,8 @@ TEST(TriangleIntersection, SharedVertexOnlyCountsTheOppositeEdges) {
   const TrianglePoints a = tri({0, 0, 0}, {4, 0, 0}, {0, 4, 0});
   // A fan neighbour meeting a only at vertex 0.
   EXPECT_FALSE(triangles_intersect(a, {0, 1, 2}, tri({0, 0, 0}, {-4, 0, 1}, {0, -4, 1}), {0, 5, 6}));
+  // In a's plane, its far edge crossing a: coplanar far edges do not clear the pair.
+  EXPECT_TRUE(triangles_intersect(a, {0, 1, 2}, tri({0, 0, 0}, {3, 3, 0}, {-1, 3, 0}), {0, 5, 6}));
   // Folded back over a: its edge opposite the shared vertex cuts through a.
   EXPECT_TRUE(triangles_intersect(a, {0, 1, 2}, tri({0, 0, 0}, {2, 1, -1}, {1, 2, 1}), {0, 5, 6}));
   // The same points without the shared index: the common point alone is an intersection.
@@ -90,7 +92,7 @@ TEST(TriangleIntersection, PlaneSideIsCgalsExactOrientation) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> coord(-50.0, 50.0), weight(-0.5, 1.5), offset(-1.0, 1.0);
   std::uniform_int_distribution<int> ulps(-4, 4);
-  int coplanar = 0, decided = 0;
+  int coplanar = 0, off_plane = 0;
   std::uniform_int_distribution<int> integer(-50, 50);
   auto on_tilted_plane = [&] {  // z = x + 2y with integers: exactly coplanar, exactly representable
     const double x = integer(rng), y = integer(rng);
@@ -111,8 +113,17 @@ TEST(TriangleIntersection, PlaneSideIsCgalsExactOrientation) {
     auto kp = [](const Vector3d& v) { return K::Point_3(v.x(), v.y(), v.z()); };
     const int exact = static_cast<int>(CGAL::orientation(kp(t[0]), kp(t[1]), kp(t[2]), kp(p)));
     ASSERT_EQ(TrianglePlane(t).side(p), exact) << "case " << k;
-    (exact == 0 ? coplanar : decided) += 1;
+    (exact == 0 ? coplanar : off_plane) += 1;
   }
   EXPECT_GT(coplanar, 0);  // exactly coplanar points occur, so a filter that never says 0 fails
-  EXPECT_GT(decided, 10000);
+  // Edges so short that the double products underflow: the error bound no longer holds there,
+  // and the answer must still be CGAL's (a review found a wrong sign before the underflow check).
+  const double tiny = std::ldexp(1.0, -537);
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  const TrianglePoints t = tri({0, 0, 0}, {tiny, tiny, 0}, {1.49 * tiny, 0.51 * tiny, 0.6 * tiny});
+  for (const Vector3d& p : {Vector3d(1, 0, 1), Vector3d(1e200, 0, 1e200)})
+    EXPECT_EQ(TrianglePlane(t).side(p), static_cast<int>(CGAL::orientation(K::Point_3(0, 0, 0), K::Point_3(tiny, tiny, 0),
+                                                                            K::Point_3(1.49 * tiny, 0.51 * tiny, 0.6 * tiny),
+                                                                            K::Point_3(p.x(), p.y(), p.z()))));
+  EXPECT_GT(off_plane, 10000);
 }

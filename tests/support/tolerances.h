@@ -219,8 +219,5 @@ constexpr double kRepeatedPolishMinAngleDeg = 21.5;
 /// the angle smoothing may hand input vertices to a neighbour (mesher/remesh_complex.h
 /// keeps_represented), 18.38 when it may not; 22 separates the two.
 constexpr double kHandoffMinAngleDeg = 22.0;
-/// Angles in progress notes are printed with two decimals (mesher/surface_remesh.cpp): a figure
-/// read back from a note is within half the last digit of the value it was printed from.
-constexpr double kNoteAngleRoundingDeg = 0.005;
 
 }  // namespace tissuemesh::test
