@@ -96,12 +96,6 @@ bool print_config_or_require_out(bool print_config, const std::string& effective
   return true;
 }
 
-std::string format_double(const char* printf_format, double value) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, printf_format, value);
-  return buf;
-}
-
 nlohmann::json vec_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 std::string command_line(int argc, char** argv) {

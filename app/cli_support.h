@@ -5,6 +5,7 @@
 // solve that did not converge) and internal failure (anything else, printed as "internal failure").
 #pragma once
 
+#include "core/number_format.h"  // format_double, used by every command
 #include "core/progress.h"
 
 #include <CLI/CLI.hpp>
@@ -50,8 +51,6 @@ void add_model_job_options(CLI::App& sub, ModelJobOptions& options);
 /// InputError when `out` is empty and returns true.
 bool print_config_or_require_out(bool print_config, const std::string& effective_yaml, const std::string& out);
 
-/// `value` printed with a printf format for one double, e.g. format_double("%.2f", 1.234) = "1.23".
-std::string format_double(const char* printf_format, double value);
 
 /// The command line as typed (for run records).
 std::string command_line(int argc, char** argv);

@@ -1,12 +1,12 @@
 #include "mesher/surface_remesh.h"
 
 #include "core/errors.h"
+#include "core/number_format.h"
 #include "mesher/remesh_complex.h"
 #include "mesher/surface_quality.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -35,14 +35,6 @@ constexpr double kStuckBelow = 0.5;
 /// 27.6 / 26.6 / 30.0 / 29.8 (Q_min at 19,000: 0.498, 0.483, 0.480). Budgets 2,000 and 2,200 keep
 /// their polished result (every repair lowered Q_min), as do the shipped 2,100 and 21,000.
 constexpr int kRepairRounds = 2;
-
-std::string format_fixed(double v, const char* format) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, format, v);
-  return buffer;
-}
-std::string format_mm(double v) { return format_fixed(v, "%.3f"); }
-std::string format_degrees(double v) { return format_fixed(v, "%.2f"); }
 
 }  // namespace
 
@@ -80,7 +72,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   for (int it = 0; it < rounds; ++it) {
     round(m, it >= 1);
     stage.note("round " + std::to_string(it + 1) + "/" + std::to_string(rounds) + ": " + std::to_string(m.vertices()) +
-               " vertices at edge length L " + format_mm(m.L) + " mm");
+               " vertices at edge length L " + format_double("%.3f", m.L) + " mm");
     if (budget && (it == rounds / 3 || it == 2 * rounds / 3))
       m.L *= std::sqrt(static_cast<double>(m.vertices()) / static_cast<double>(target));
   }
@@ -124,12 +116,12 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   TriSurface result = m.result(input);
   const SurfaceQuality first = surface_quality(result);
   stage.note("budget met (" + std::to_string(m.vertices()) + " vertices), polished: smallest angle " +
-             format_degrees(first.min_angle_deg) + " deg, Q_min " + format_fixed(first.q_min, "%.4f") + ", " +
+             format_double("%.2f", first.min_angle_deg) + " deg, Q_min " + format_double("%.4f", first.q_min) + ", " +
              std::to_string(smoothed) + " angle-improving moves");
   // Repair of what the polish left under 30 degrees: cap the size around each poor triangle's
-  // shortest edge, remesh there again (kRepairRounds rounds) and polish again. The repaired
-  // complex is kept only when it is no worse in both the smallest angle and Q_min (so a shipped
-  // result never degrades); otherwise the polished one stays, unchanged.
+  // shortest edge, remesh there again (kRepairRounds rounds) and polish again, on a copy kept only
+  // when it improves the Table 1 minima (improves_table1_minima); otherwise, or when the repair
+  // fails, the polished complex stays, unchanged.
   const RemeshComplex* chosen = &m;
   std::unique_ptr<RemeshComplex> repaired;
   if (options.repair && first.p30_percent > 0.0) {
@@ -142,9 +134,9 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
       const SurfaceQuality q = surface_quality(trial_result);
       const bool keep = improves_table1_minima(first, q);
       stage.note("repair around " + std::to_string(capped) + " triangles under 30 deg: smallest angle " +
-                 format_degrees(q.min_angle_deg) + " deg, Q_min " + format_fixed(q.q_min, "%.4f") +
-                 (keep ? " (kept)" : " (not better than " + format_degrees(first.min_angle_deg) + " deg, Q_min " +
-                                         format_fixed(first.q_min, "%.4f") + ": discarded)"));
+                 format_double("%.2f", q.min_angle_deg) + " deg, Q_min " + format_double("%.4f", q.q_min) +
+                 (keep ? " (kept)" : " (not better than " + format_double("%.2f", first.min_angle_deg) + " deg, Q_min " +
+                                         format_double("%.4f", first.q_min) + ": discarded)"));
       if (keep) {
         repaired = std::move(trial);
         chosen = repaired.get();
