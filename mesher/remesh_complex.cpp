@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <optional>
 #include <cmath>
+#include <optional>
 
 namespace tissuemesh {
 namespace {
@@ -297,18 +297,16 @@ bool RemeshComplex::would_intersect(const std::vector<int>& replaced) {
   const std::vector<NewTriangle>& created = created_;
   if (created.empty()) return false;
   created_boxes_.clear();
-  created_planes_.clear();
+  created_prepared_.clear();
   Eigen::AlignedBox3d all;
   for (const NewTriangle& c : created) {
     created_boxes_.push_back(box_of(c.p));
-    created_planes_.emplace_back(c.p);
+    created_prepared_.emplace_back(c.p);
     all.extend(created_boxes_.back());
   }
   for (std::size_t i = 0; i < created.size(); ++i)
     for (std::size_t j = i + 1; j < created.size(); ++j)
-      if (triangles_intersect(created[i].p, created[i].v, created_planes_[i], created[j].p, created[j].v,
-                              created_planes_[j]))
-        return true;
+      if (triangles_intersect(created_prepared_[i], created[i].v, created_prepared_[j], created[j].v)) return true;
   // One grid query over the union of the created triangles' boxes, each live triangle met there
   // tested once against every created triangle whose box it touches: the same pairs as a query
   // per created triangle, without visiting a candidate once per created triangle.
@@ -322,15 +320,11 @@ bool RemeshComplex::would_intersect(const std::vector<int>& replaced) {
     seen_[u] = stamp_;
     const Eigen::AlignedBox3d& box = tri_box_[u];
     if (!box.intersects(all)) continue;
-    std::optional<TrianglePoints> q;
-    std::optional<TrianglePlane> plane;  // both built at the first created triangle whose box u touches
+    std::optional<PreparedTriangle> prepared;  // built at the first created triangle whose box u touches
     for (std::size_t i = 0; i < created.size(); ++i) {
       if (!box.intersects(created_boxes_[i])) continue;
-      if (!plane) {
-        q.emplace(TrianglePoints{x_[tri_[u][0]], x_[tri_[u][1]], x_[tri_[u][2]]});
-        plane.emplace(*q);
-      }
-      if (triangles_intersect(created[i].p, created[i].v, created_planes_[i], *q, tri_[u], *plane)) return true;
+      if (!prepared) prepared.emplace(TrianglePoints{x_[tri_[u][0]], x_[tri_[u][1]], x_[tri_[u][2]]});
+      if (triangles_intersect(created_prepared_[i], created[i].v, *prepared, tri_[u])) return true;
     }
   }
   return false;

@@ -236,7 +236,7 @@ class RemeshComplex {
   unsigned stamp_ = 0;
   std::vector<int> candidates_;
   std::vector<Eigen::AlignedBox3d> created_boxes_;  ///< scratch of would_intersect(): boxes of created_
-  std::vector<TrianglePlane> created_planes_;       ///< scratch of would_intersect(): planes of created_
+  std::vector<PreparedTriangle> created_prepared_;  ///< scratch of would_intersect(): created_, prepared
   std::vector<NewTriangle> created_;  ///< scratch: the triangles an operation would create
   std::vector<Vector3d> x_;
   std::vector<Kind> kind_;

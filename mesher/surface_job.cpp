@@ -2,8 +2,6 @@
 
 #include "mesher/mesh_job.h"
 
-#include <optional>
-
 namespace tissuemesh {
 
 namespace {
@@ -40,12 +38,10 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
   }
   // A stage of its own, so that every second between extraction and remeshed surface is timed
   // (bench/bench_surface.sh counts it with the remeshing).
-  std::optional<SurfaceProjection> on_extracted_storage;
-  {
+  const SurfaceProjection on_extracted = [&] {
     auto stage = progress.stage("projection onto the extracted surface");
-    on_extracted_storage.emplace(r.extraction.surface);
-  }
-  const SurfaceProjection& on_extracted = *on_extracted_storage;
+    return SurfaceProjection(r.extraction.surface);
+  }();
   RemeshOptions options;
   options.target_vertices = config.surface.target_vertices;
   options.target_edge_mm = config.surface.target_edge_mm;

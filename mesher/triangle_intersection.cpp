@@ -33,7 +33,7 @@ bool filterable(const Eigen::Vector3d& v) {
 
 bool triangle_is_degenerate(const TrianglePoints& t) { return CGAL::collinear(point(t[0]), point(t[1]), point(t[2])); }
 
-TrianglePlane::TrianglePlane(const TrianglePoints& t) : t_(t) {
+PreparedTriangle::PreparedTriangle(const TrianglePoints& t) : t_(t) {
   const Eigen::Vector3d a = t[1] - t[0], b = t[2] - t[0];
   normal_ = {a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x()};
   magnitude_ = {std::abs(a.y() * b.z()) + std::abs(a.z() * b.y()), std::abs(a.z() * b.x()) + std::abs(a.x() * b.z()),
@@ -41,7 +41,7 @@ TrianglePlane::TrianglePlane(const TrianglePoints& t) : t_(t) {
   filterable_ = filterable(a) && filterable(b);
 }
 
-int TrianglePlane::side(const Eigen::Vector3d& p) const {
+int PreparedTriangle::side(const Eigen::Vector3d& p) const {
   // Shewchuk (1997): orient3d evaluated in doubles is off by at most (7 + 56 u) u times the
   // permanent (u = 2^-53) when nothing underflows; doubled for margin. An infinite or NaN bound
   // (overflow) fails both comparisons and falls through to the exact predicate.
@@ -56,18 +56,19 @@ int TrianglePlane::side(const Eigen::Vector3d& p) const {
   return static_cast<int>(CGAL::orientation(point(t_[0]), point(t_[1]), point(t_[2]), point(p)));
 }
 
-bool TrianglePlane::strictly_one_side(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
+bool PreparedTriangle::strictly_one_side(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
   const int a = side(p);
   return a != 0 && a == side(q);
 }
 
 bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, const TrianglePoints& b,
                          const std::array<int, 3>& ib) {
-  return triangles_intersect(a, ia, TrianglePlane(a), b, ib, TrianglePlane(b));
+  return triangles_intersect(PreparedTriangle(a), ia, PreparedTriangle(b), ib);
 }
 
-bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, const TrianglePlane& plane_a,
-                         const TrianglePoints& b, const std::array<int, 3>& ib, const TrianglePlane& plane_b) {
+bool triangles_intersect(const PreparedTriangle& prepared_a, const std::array<int, 3>& ia,
+                         const PreparedTriangle& prepared_b, const std::array<int, 3>& ib) {
+  const TrianglePoints &a = prepared_a.points(), &b = prepared_b.points();
   // Position in b of each vertex of a (-1: not shared).
   std::array<int, 3> in_b{-1, -1, -1};
   int shared = 0;
@@ -79,7 +80,7 @@ bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, 
       }
   if (shared == 3) return true;
   if (shared == 0) {
-    if (plane_a.strictly_one_side(b[0], b[1]) && plane_a.strictly_one_side(b[1], b[2])) return false;
+    if (prepared_a.strictly_one_side(b[0], b[1]) && prepared_a.strictly_one_side(b[1], b[2])) return false;
     return CGAL::do_intersect(Kernel::Triangle_3(point(a[0]), point(a[1]), point(a[2])),
                               Kernel::Triangle_3(point(b[0]), point(b[1]), point(b[2])));
   }
@@ -92,7 +93,7 @@ bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, 
     // vertex, so neither a1a2 nor b1b2 (in b's plane, not through b's own vertex: b is not
     // degenerate, or its plane would have no strict side) can meet the other triangle; the same
     // with a and b swapped. Only when neither holds are the two edges tested.
-    if (plane_b.strictly_one_side(a1, a2) || plane_a.strictly_one_side(b1, b2)) return false;
+    if (prepared_b.strictly_one_side(a1, a2) || prepared_a.strictly_one_side(b1, b2)) return false;
     return segment_meets(a1, a2, b) || segment_meets(b1, b2, a);
   }
   // A shared edge (p, q); r and s the other vertices.

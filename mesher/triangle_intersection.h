@@ -26,13 +26,14 @@ bool triangle_is_degenerate(const TrianglePoints& t);
 bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, const TrianglePoints& b,
                          const std::array<int, 3>& ib);
 
-/// The plane of a triangle, prepared for exact side tests of many points: side(p) is the sign of
+/// A triangle with its plane prepared for exact side tests of many points: side(p) is the sign of
 /// CGAL::orientation(t[0], t[1], t[2], p), taken from double arithmetic with the normal computed
 /// once when Shewchuk's forward error bound for orient3d proves it (and nothing can underflow),
 /// else from CGAL's exact predicate; the answer is CGAL's in every case.
-class TrianglePlane {
+class PreparedTriangle {
  public:
-  explicit TrianglePlane(const TrianglePoints& t);
+  explicit PreparedTriangle(const TrianglePoints& t);
+  const TrianglePoints& points() const { return t_; }
   /// +1, -1, or 0 (coplanar), exact.
   int side(const Eigen::Vector3d& p) const;
   /// True when p and q lie strictly on the same side (exact): segment pq misses the plane.
@@ -44,9 +45,9 @@ class TrianglePlane {
   bool filterable_ = false;  ///< edge components far enough from underflow for the double filter
 };
 
-/// The same, with both triangles' planes already built (a caller testing one triangle against
-/// many builds its plane once). plane_a must be TrianglePlane(a), plane_b TrianglePlane(b).
-bool triangles_intersect(const TrianglePoints& a, const std::array<int, 3>& ia, const TrianglePlane& plane_a,
-                         const TrianglePoints& b, const std::array<int, 3>& ib, const TrianglePlane& plane_b);
+/// The same test on prepared triangles (a caller testing one triangle against many prepares it
+/// once).
+bool triangles_intersect(const PreparedTriangle& a, const std::array<int, 3>& ia, const PreparedTriangle& b,
+                         const std::array<int, 3>& ib);
 
 }  // namespace tissuemesh

@@ -98,7 +98,9 @@ TEST(SurfaceRemesh, ReportsEveryRoundAndTheBudgetAsProgressNotes) {
     EXPECT_NE(notes[k].find(" mm"), std::string::npos) << notes[k];
   }
   EXPECT_EQ(notes[4].rfind("budget met (300 vertices)", 0), 0u) << notes[4];
-  if (notes.size() == 6) EXPECT_EQ(notes[5].rfind("repair around ", 0), 0u) << notes[5];  // only when needed
+  if (notes.size() == 6) {  // only when the polish left a triangle under 30 degrees
+    EXPECT_EQ(notes[5].rfind("repair around ", 0), 0u) << notes[5];
+  }
 }
 
 TEST(SurfaceRemesh, ThinShellStaysIntersectionFreeAtCoarseBudgets) {

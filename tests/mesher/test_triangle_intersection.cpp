@@ -87,7 +87,7 @@ TEST(TriangleIntersection, NearlyCoplanarCasesAgreeWithExactArithmetic) {
 }
 
 TEST(TriangleIntersection, PlaneSideIsCgalsExactOrientation) {
-  // TrianglePlane::side against CGAL's exact orientation on points off the plane by 0-4 ulps per
+  // PreparedTriangle::side against CGAL's exact orientation on points off the plane by 0-4 ulps per
   // coordinate (where the double filter must give way) and far off it (where it decides).
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> coord(-50.0, 50.0), weight(-0.5, 1.5), offset(-1.0, 1.0);
@@ -112,7 +112,7 @@ TEST(TriangleIntersection, PlaneSideIsCgalsExactOrientation) {
     using K = CGAL::Exact_predicates_inexact_constructions_kernel;
     auto kp = [](const Vector3d& v) { return K::Point_3(v.x(), v.y(), v.z()); };
     const int exact = static_cast<int>(CGAL::orientation(kp(t[0]), kp(t[1]), kp(t[2]), kp(p)));
-    ASSERT_EQ(TrianglePlane(t).side(p), exact) << "case " << k;
+    ASSERT_EQ(PreparedTriangle(t).side(p), exact) << "case " << k;
     (exact == 0 ? coplanar : off_plane) += 1;
   }
   EXPECT_GT(coplanar, 0);  // exactly coplanar points occur, so a filter that never says 0 fails
@@ -122,7 +122,7 @@ TEST(TriangleIntersection, PlaneSideIsCgalsExactOrientation) {
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   const TrianglePoints t = tri({0, 0, 0}, {tiny, tiny, 0}, {1.49 * tiny, 0.51 * tiny, 0.6 * tiny});
   for (const Vector3d& p : {Vector3d(1, 0, 1), Vector3d(1e200, 0, 1e200)})
-    EXPECT_EQ(TrianglePlane(t).side(p), static_cast<int>(CGAL::orientation(K::Point_3(0, 0, 0), K::Point_3(tiny, tiny, 0),
+    EXPECT_EQ(PreparedTriangle(t).side(p), static_cast<int>(CGAL::orientation(K::Point_3(0, 0, 0), K::Point_3(tiny, tiny, 0),
                                                                             K::Point_3(1.49 * tiny, 0.51 * tiny, 0.6 * tiny),
                                                                             K::Point_3(p.x(), p.y(), p.z()))));
   EXPECT_GT(off_plane, 10000);
