@@ -262,7 +262,8 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                    {"splits", r.remesh->splits},
                    {"collapses", r.remesh->collapses},
                    {"flips", r.remesh->flips},
-                   {"angle_smoothing_moves", r.remesh->angle_moves}};
+                   {"angle_smoothing_moves", r.remesh->angle_moves},
+                   {"quality_smoothing_moves", r.remesh->quality_moves}};
     if (r.hausdorff)
       j["remesh"]["hausdorff_to_extracted_mm"] = {{"symmetric", r.hausdorff->symmetric_mm()},
                                                    {"remeshed_to_extracted", r.hausdorff->a_to_b_mm},
@@ -337,7 +338,9 @@ std::string surface_job_text(const SurfaceJobResult& r) {
     o << "remeshed surface: " << s.points.size() << " vertices, " << s.triangles.size() << " triangles, "
       << s.junctions.size() << " junction polylines; edge length " << fmt("%.3f", r.remesh->edge_length_mm)
       << " mm where the size field is 1 (" << r.remesh->splits << " splits, " << r.remesh->collapses
-      << " collapses, " << r.remesh->flips << " flips, " << r.remesh->angle_moves << " angle-smoothing moves)\n";
+      << " collapses, " << r.remesh->flips << " flips, " << r.remesh->angle_moves << " angle-smoothing moves";
+    if (r.remesh->quality_moves > 0) o << ", " << r.remesh->quality_moves << " quality-smoothing moves";
+    o << ")\n";
     if (r.hausdorff)
       o << "Hausdorff distance to the extracted surface: " << fmt("%.3f", r.hausdorff->symmetric_mm())
         << " mm (remeshed -> extracted " << fmt("%.3f", r.hausdorff->a_to_b_mm) << " mm, extracted -> remeshed "

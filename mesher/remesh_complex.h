@@ -85,6 +85,15 @@ class RemeshComplex {
   /// Angle-improving smoothing of the vertices of triangles with an angle under `min_angle_rad`
   /// (header comment); appends the vertices it moved to `moved`.
   void smooth_poor(double min_angle_rad, std::vector<int>& moved);
+  /// Quality-raising smoothing of the surface vertices of triangles whose Frey-Borouchaki quality
+  /// (mesher/triangle_geometry.h) is under `q_below`: the pattern search of search_min_angle for
+  /// the position with the largest smallest quality around the vertex, among positions that keep
+  /// its smallest angle at least min(its current one, `min_angle_rad`) and add no angle under
+  /// `min_angle_rad`; the vertex moves there if that raises its smallest quality and try_move's
+  /// guards allow it. So the surface's Q_min never drops, its count of angles under
+  /// `min_angle_rad` never grows, and its smallest angle never drops below min(its current value,
+  /// `min_angle_rad`). Appends the vertices it moved to `moved`.
+  void smooth_low_quality(double q_below, double min_angle_rad, std::vector<int>& moved);
   /// Tries the flip of every edge of the triangles around `vertices` (after they moved: only those
   /// triangles' angles changed, so only their edges can have become flippable); returns the flips.
   std::size_t flip_around(const std::vector<int>& vertices);
@@ -191,8 +200,26 @@ class RemeshComplex {
   /// vertex v: the same along its junction (steps towards either curve neighbour); moves there if
   /// that beats the current one and the guards of try_move allow it. `nb`: v's neighbours.
   bool search_min_angle(int v, const std::vector<int>& nb);
+  /// The pattern search over surface vertex v's patch shared by search_min_angle and
+  /// smooth_low_quality: from v's position, steps of `step`, halved kSearchLevels - 1 times, in
+  /// eight tangent directions from the best point so far, each landing point projected onto the
+  /// patch; returns the point with the largest score(p) (v's own position unless one beats it) and
+  /// that score in `best_score`. False when v has no normal (nothing searched).
+  template <class Score>
+  bool search_on_patch(int v, double step, Score score, Vector3d& best, double& best_score) const;
   /// Smallest angle of v's triangles with v at p (radians).
   double ring_min_angle(int v, const Vector3d& p) const;
+  /// v's triangles with v at p: smallest angle (radians), smallest Frey-Borouchaki quality, and
+  /// how many of their angles are under `poor_angle_rad`.
+  struct RingShape {
+    double min_angle;
+    double min_quality;
+    int poor_angles;
+  };
+  RingShape ring_shape(int v, const Vector3d& p, double poor_angle_rad) const;
+  /// Marks (1) the vertices of every live triangle (a, b, c) for which bad(a, b, c) holds.
+  template <class Bad>
+  std::vector<char> vertices_of_triangles(Bad bad) const;
   /// Shorter of the two junction edges at curve vertex v with v at p (mm). Curve moves must not
   /// shorten it: projecting midpoints onto a junction loop smaller than h otherwise pulls the
   /// loop's vertices together (Laplacian shrinkage), down to micrometre edges that a volume

@@ -21,6 +21,13 @@ constexpr double kCollapseBelow = 4.0 / 5.0;
 constexpr double kSearchFirstStep = 0.25;
 constexpr int kSearchLevels = 6;
 
+/// The pattern search's first step at v: kSearchFirstStep times v's shortest edge to `nb`.
+double first_search_step(const std::vector<Eigen::Vector3d>& x, int v, const std::vector<int>& nb) {
+  double step = std::numeric_limits<double>::infinity();
+  for (int w : nb) step = std::min(step, (x[w] - x[v]).norm());
+  return step * kSearchFirstStep;
+}
+
 std::array<int, 2> undirected(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
 
 void sort_unique(std::vector<std::array<int, 2>>& edges) {
@@ -134,12 +141,19 @@ void RemeshComplex::relax() {
   }
 }
 
+template <class Bad>
+std::vector<char> RemeshComplex::vertices_of_triangles(Bad bad) const {
+  std::vector<char> marked(x_.size(), 0);
+  for (std::size_t t = 0; t < tri_.size(); ++t)
+    if (tri_alive_[t] && bad(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]))
+      for (int v : tri_[t]) marked[v] = 1;
+  return marked;
+}
+
 void RemeshComplex::smooth_poor(double min_angle_rad, std::vector<int>& moved_vertices) {
   rebuild_grid();
-  std::vector<char> todo(x_.size(), 0);
-  for (std::size_t t = 0; t < tri_.size(); ++t)
-    if (tri_alive_[t] && min_angle(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]) < min_angle_rad)
-      for (int v : tri_[t]) todo[v] = 1;
+  const std::vector<char> todo = vertices_of_triangles(
+      [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) { return min_angle(a, b, c) < min_angle_rad; });
   std::vector<int> nb;
   for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
     if (!todo[v] || !vertex_alive_[v] || kind_[v] == Kind::Corner) continue;
@@ -177,10 +191,28 @@ void RemeshComplex::smooth_poor(double min_angle_rad, std::vector<int>& moved_ve
   }
 }
 
+template <class Score>
+bool RemeshComplex::search_on_patch(int v, double step, Score score, Vector3d& best, double& best_score) const {
+  best = x_[v];
+  best_score = score(best);
+  const Vector3d n = vertex_normal(v);
+  if (n.isZero()) return false;
+  const Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  for (int level = 0; level < kSearchLevels; ++level, step *= 0.5) {
+    // Eight directions in the tangent plane; the landing point is projected onto v's patch.
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * M_PI / 4.0;
+      Vector3d p;
+      if (!tangential_target(v, n, best + step * (std::cos(a) * t1 + std::sin(a) * t2), p)) continue;
+      const double value = score(p);
+      if (value > best_score) best = p, best_score = value;
+    }
+  }
+  return true;
+}
+
 bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
-  double step = std::numeric_limits<double>::infinity();
-  for (int w : nb) step = std::min(step, (x_[w] - x_[v]).norm());
-  step *= kSearchFirstStep;
+  double step = first_search_step(x_, v, nb);
   Vector3d best = x_[v];
   double best_angle = ring_min_angle(v, best);
   const double before = best_angle;
@@ -201,20 +233,34 @@ bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
       }
     return best_angle > before && try_move(v, best, true);
   }
-  const Vector3d n = vertex_normal(v);
-  if (n.isZero()) return false;
-  const Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-  for (int level = 0; level < kSearchLevels; ++level, step *= 0.5) {
-    // Eight directions in the tangent plane; the landing point is projected onto v's patch.
-    for (int k = 0; k < 8; ++k) {
-      const double a = k * M_PI / 4.0;
-      Vector3d p;
-      if (!tangential_target(v, n, best + step * (std::cos(a) * t1 + std::sin(a) * t2), p)) continue;
-      const double angle = ring_min_angle(v, p);
-      if (angle > best_angle) best = p, best_angle = angle;
-    }
-  }
+  if (!search_on_patch(v, step, [&](const Vector3d& p) { return ring_min_angle(v, p); }, best, best_angle))
+    return false;
   return best_angle > before && try_move(v, best, true);
+}
+
+void RemeshComplex::smooth_low_quality(double q_below, double min_angle_rad, std::vector<int>& moved_vertices) {
+  rebuild_grid();
+  const std::vector<char> todo = vertices_of_triangles(
+      [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) { return triangle_quality(a, b, c) < q_below; });
+  std::vector<int> nb;
+  for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
+    if (!todo[v] || !vertex_alive_[v] || kind_[v] != Kind::Surface) continue;
+    neighbours(v, nb);
+    const RingShape now = ring_shape(v, x_[v], min_angle_rad);
+    const double angle_floor = std::min(now.min_angle, min_angle_rad);
+    auto quality = [&](const Vector3d& p) {
+      const RingShape there = ring_shape(v, p, min_angle_rad);
+      return there.min_angle >= angle_floor && there.poor_angles <= now.poor_angles
+                 ? there.min_quality
+                 : -1.0;  // below any quality: never chosen
+    };
+    const double before = now.min_quality;
+    Vector3d best;
+    double best_quality;
+    if (search_on_patch(v, first_search_step(x_, v, nb), quality, best, best_quality) && best_quality > before &&
+        try_move(v, best, true))
+      moved_vertices.push_back(v);
+  }
 }
 
 std::size_t RemeshComplex::cap_poor_triangles(double min_angle_rad) {

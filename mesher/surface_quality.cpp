@@ -18,16 +18,13 @@ SurfaceQuality surface_quality(const TriSurface& s) {
   double sum_min = 0.0, sum_q = 0.0, sum_edge = 0.0;
   for (const auto& t : s.triangles) {
     const Eigen::Vector3d &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
-    const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();  // opposite a, b, c
-    const double area = area_vector(a, b, c).norm();
-    const double p = 0.5 * (la + lb + lc), h = std::max({la, lb, lc});
     const std::array<double, 3> angles = triangle_angles(a, b, c);  // zero for a zero-area triangle
     const double min_angle = std::min({angles[0], angles[1], angles[2]}) * kDeg;
     for (double angle : angles) below30 += angle * kDeg < 30.0;
-    const double quality = p > 0.0 && h > 0.0 ? 6.0 / std::sqrt(3.0) * area / (p * h) : 0.0;
+    const double quality = triangle_quality(a, b, c);
     sum_min += min_angle;
     sum_q += quality;
-    sum_edge += (la + lb + lc) / 3.0;
+    sum_edge += ((b - c).norm() + (c - a).norm() + (a - b).norm()) / 3.0;
     q.min_angle_deg = std::min(q.min_angle_deg, min_angle);
     q.q_min = std::min(q.q_min, quality);
   }

@@ -53,6 +53,7 @@ struct RemeshResult {
   double edge_length_mm = 0.0;  ///< L, the size where s = 1, after the budget rescaling
   std::size_t splits = 0, collapses = 0, flips = 0;
   std::size_t angle_moves = 0;  ///< vertex moves of the angle-improving smoothing (a kept repair's included)
+  std::size_t quality_moves = 0;  ///< vertex moves of the final quality-raising smoothing
 };
 
 /// `input` must be valid and closed per tissue (mesher/surface_checks.h), `projection` built on it.

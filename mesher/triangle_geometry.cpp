@@ -23,6 +23,13 @@ double min_angle(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
   return std::min({angles[0], angles[1], angles[2]});
 }
 
+double triangle_quality(const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();
+  const double area = area_vector(a, b, c).norm();
+  const double p = 0.5 * (la + lb + lc), h = std::max({la, lb, lc});
+  return p > 0.0 && h > 0.0 ? 6.0 / std::sqrt(3.0) * area / (p * h) : 0.0;
+}
+
 double point_triangle_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
   const Vector3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);

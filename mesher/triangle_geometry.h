@@ -19,6 +19,10 @@ std::array<double, 3> triangle_angles(const Eigen::Vector3d& a, const Eigen::Vec
 /// Smallest interior angle (radians).
 double min_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
+/// Frey-Borouchaki quality Q = 6/sqrt(3) A / (p h_max) (A area, p half-perimeter, h_max longest
+/// edge; the paper's Table 1): 1 for the equilateral triangle, 0 for a degenerate one.
+double triangle_quality(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
 /// Distance from p to the closed triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
 double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                const Eigen::Vector3d& c);

@@ -220,4 +220,8 @@ constexpr double kRepeatedPolishMinAngleDeg = 21.5;
 /// keeps_represented), 18.38 when it may not; 22 separates the two.
 constexpr double kHandoffMinAngleDeg = 22.0;
 
+/// A quality the remesher prints to 4 decimals in a progress note ("Q_min 0.3222 -> 0.3469")
+/// against the value computed from the surface: half a unit of the last printed digit.
+constexpr double kPrintedFourDecimals = 5e-5;
+
 }  // namespace tissuemesh::test
