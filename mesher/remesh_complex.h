@@ -22,6 +22,10 @@
 //             largest smallest angle.
 //   split_poor  the longest edge of a triangle still under the threshold is split when every
 //             triangle the split makes has a larger smallest angle than the ones it replaces.
+//   smooth_low_quality  the surface vertices of triangles under a Frey-Borouchaki quality move,
+//             by the same pattern search, to the position with the largest smallest quality
+//             around them that keeps their smallest angle and their count of angles under 30
+//             degrees from getting worse.
 // Every operation keeps the patch labels, the orientation and the junction polylines (their
 // vertices and edges are replaced along the same curve), and refuses a move that flips a
 // triangle. Validity: an operation is refused when one of the triangles it creates would intersect
@@ -31,9 +35,10 @@
 // vertex carries the input vertices collapsed into it, and a collapse or relaxation move is refused
 // when one of them would end up farther than the approximation bound (max(max_deviation_mm, L/4))
 // from the triangles around it (an angle-smoothing move may instead hand it to a neighbour whose
-// triangles are within the bound), or when a changed triangle would leave its patch by more than that
-// bound or face away from it (a triangle bridging the two sides of a thin sheet); split midpoints
-// and relaxed points that would project onto the far side of a thin sheet are refused too.
+// triangles are within the bound; so may a quality-smoothing move), or when a changed triangle
+// would leave its patch by more than that bound or face away from it (a triangle bridging the two
+// sides of a thin sheet); split midpoints and relaxed points that would project onto the far side
+// of a thin sheet are refused too.
 // Size near stuck edges: grade_stuck_edges() enters the edges between two junction vertices (curve
 // or corner) that stayed far shorter than h into a GradedSizeCap (mesher/graded_size_cap.h), and
 // h(x) = min(L s(x), cap(x)) from then on, so the triangles next to them are sized like them
@@ -86,13 +91,14 @@ class RemeshComplex {
   /// (header comment); appends the vertices it moved to `moved`.
   void smooth_poor(double min_angle_rad, std::vector<int>& moved);
   /// Quality-raising smoothing of the surface vertices of triangles whose Frey-Borouchaki quality
-  /// (mesher/triangle_geometry.h) is under `q_below`: the pattern search of search_min_angle for
-  /// the position with the largest smallest quality around the vertex, among positions that keep
-  /// its smallest angle at least min(its current one, `min_angle_rad`) and add no angle under
-  /// `min_angle_rad`; the vertex moves there if that raises its smallest quality and try_move's
-  /// guards allow it. So the surface's Q_min never drops, its count of angles under
-  /// `min_angle_rad` never grows, and its smallest angle never drops below min(its current value,
-  /// `min_angle_rad`). Appends the vertices it moved to `moved`.
+  /// (mesher/triangle_geometry.h) is under `q_below`: the pattern search of search_min_angle
+  /// (search_on_patch) for the position with the largest smallest quality around the vertex,
+  /// among positions that keep its smallest angle at least min(its current one, `min_angle_rad`)
+  /// and do not raise its count of angles under `min_angle_rad`; the vertex moves there if that
+  /// raises its smallest quality and try_move's guards allow it (input vertices it stands for may
+  /// be handed to a neighbour, as in smooth_poor). So the surface's Q_min never drops, its count
+  /// of angles under `min_angle_rad` never grows, and its smallest angle never drops below
+  /// min(its current value, `min_angle_rad`). Appends the vertices it moved to `moved`.
   void smooth_low_quality(double q_below, double min_angle_rad, std::vector<int>& moved);
   /// Tries the flip of every edge of the triangles around `vertices` (after they moved: only those
   /// triangles' angles changed, so only their edges can have become flippable); returns the flips.
@@ -189,7 +195,7 @@ class RemeshComplex {
   }
   /// Moves v to p if the normal, shape and intersection guards allow it (header comment).
   /// `handoff`: input vertices v stands for may pass to a neighbour (keeps_represented); the
-  /// angle smoothing allows it, so that a vertex next to a junction can move away from it.
+  /// angle and quality smoothing allow it, so that a vertex next to a junction can move away from it.
   bool try_move(int v, const Vector3d& p, bool handoff = false);
   /// Rebuilds the grid if needed and applies `operation(a, b)` (true: it changed the mesh) to
   /// every edge that still exists, in edges() order; returns how many changed it.

@@ -1,6 +1,6 @@
 // The sweeps of RemeshComplex over the whole complex (split, collapse, flip, relaxation,
-// angle-improving smoothing, budget matching): which edges or vertices each visits, in index
-// order, and which local operation (mesher/remesh_complex.cpp) it applies there.
+// angle-improving and quality-raising smoothing, budget matching): which edges or vertices each
+// visits, in index order, and which local operation (mesher/remesh_complex.cpp) it applies there.
 #include "mesher/remesh_complex.h"
 
 #include "mesher/triangle_geometry.h"
@@ -16,8 +16,8 @@ namespace {
 /// whose lengths average about h and never oscillate between a split and a collapse.
 constexpr double kSplitAbove = 4.0 / 3.0;
 constexpr double kCollapseBelow = 4.0 / 5.0;
-/// Pattern search of search_min_angle: first step a quarter of the shortest ring edge, halved
-/// five times (the last step is 1/128 of that edge).
+/// Pattern search of search_min_angle and smooth_low_quality: first step a quarter of the
+/// shortest ring edge, halved five times (the last step is 1/128 of that edge).
 constexpr double kSearchFirstStep = 0.25;
 constexpr int kSearchLevels = 6;
 

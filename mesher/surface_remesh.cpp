@@ -35,14 +35,6 @@ constexpr double kStuckBelow = 0.5;
 /// 27.6 / 26.6 / 30.0 / 29.8 (Q_min at 19,000: 0.498, 0.483, 0.480). Budgets 2,000 and 2,200 keep
 /// their polished result (every repair lowered Q_min), as do the shipped 2,100 and 21,000.
 constexpr int kRepairRounds = 2;
-/// Triangles with a Frey-Borouchaki quality under this get quality-raising moves as the last
-/// step (RemeshComplex::smooth_low_quality): the paper's Q_min at 2.1K (Table 1), which an obtuse
-/// triangle reaches at an angle of about 118 degrees (the isosceles one). Measured on the phantom
-/// (Q_min before -> after, smallest angle and P30 unchanged): budgets 2,000 0.4837 -> 0.4908,
-/// 2,200 0.4735 -> 0.4911, 22,000 0.4714 -> 0.4888, 23,000 0.4849 -> 0.5124; at 1,900 and 2,300
-/// no move helps (the worst triangle has only junction vertices, or the ring keeps an angle under
-/// 30 degrees); the shipped 2,100 and 21,000 (0.4896, 0.4908) are above it.
-constexpr double kLowQuality = 0.486;
 
 }  // namespace
 
@@ -157,20 +149,21 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
                  "): discarded");
     }
   }
-  // Last, quality-raising moves around triangles under kLowQuality, on the chosen complex: they
-  // never lower its Q_min nor add angles under 30 degrees, and never take its smallest angle below
-  // min(its value, 30 degrees) (RemeshComplex::smooth_low_quality).
+  // Last, quality-raising moves around triangles under kQualitySmoothingBelow, on the chosen
+  // complex: they never lower its Q_min nor raise its count of angles under 30 degrees, and never
+  // take its smallest angle below min(its value, 30 degrees) (RemeshComplex::smooth_low_quality).
+  // At most as many passes as the angle smoothing; on the phantom they stop after 1-5 moves.
   std::size_t quality_moves = 0;
   const double q_before = surface_quality(result).q_min;
-  if (q_before < kLowQuality) {
+  if (q_before < kQualitySmoothingBelow) {
     for (int k = 0; k < kAngleSmoothingPasses; ++k) {
       std::vector<int> moved;
-      chosen->smooth_low_quality(kLowQuality, poor, moved);
+      chosen->smooth_low_quality(kQualitySmoothingBelow, poor, moved);
       if (moved.empty()) break;
       quality_moves += moved.size();
     }
     if (quality_moves > 0) result = chosen->result(input);
-    stage.note("quality smoothing around triangles under Q " + format_double("%.3f", kLowQuality) + ": Q_min " +
+    stage.note("quality smoothing around triangles under Q " + format_double("%.3f", kQualitySmoothingBelow) + ": Q_min " +
                format_double("%.4f", q_before) + " -> " + format_double("%.4f", surface_quality(result).q_min) + ", " +
                std::to_string(quality_moves) + " moves");
   }

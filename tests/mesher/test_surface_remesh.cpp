@@ -456,13 +456,15 @@ TEST(SurfaceRemesh, CappingPoorTrianglesRefinesAroundThem) {
 TEST(SurfaceRemesh, QualitySmoothingKeepsTheAnglesWhileItRaisesQuality) {
   // RemeshComplex::smooth_low_quality moves the surface vertices of triangles under a quality to
   // raise the smallest quality around each, keeping the vertex's smallest angle at least min(its
-  // own, 30 degrees) and adding no angle under 30 degrees. So pass after pass (same triangles,
-  // only moves) the surface's Q_min never drops, P30 never grows and the smallest angle never drops
-  // below min(its value, 30 degrees). The small test images never need it; a coarse phantom,
-  // remeshed at two edge lengths and polished, does.
-  // Mutation checks (measured when written): without the angle floor the smallest angle drops at
-  // L = 5 mm (17.51 -> 15.74 degrees); without the count of angles under 30 degrees P30 grows at
-  // L = 8 mm (0.6903 -> 0.7125 %); the floor and the count each hold alone at the other length.
+  // own, 30 degrees) and its count of angles under 30 degrees from growing. Every vertex it
+  // reports has moved, and pass after pass (same triangles, only moves) the surface's Q_min never
+  // drops, P30 never grows and the smallest angle never drops below min(its value, 30 degrees).
+  // The small test images never need it; a coarse phantom, remeshed at two edge lengths and
+  // polished, does. Mutation checks (measured when written): without the angle floor the
+  // smallest angle drops at L = 5 mm (17.51 -> 15.74 degrees); without the count of angles under
+  // 30 degrees P30 grows at L = 8 mm (0.6903 -> 0.7125 %); the floor and the count each hold
+  // alone at the other length; accepting a move that does not raise the quality (>= instead of
+  // >) reports vertices that did not move. (A wrong objective is caught by the next test.)
   const CoarsePhantom& phantom = coarse_phantom();
   const TriSurface& input = phantom.surface;
   const SurfaceProjection& on = phantom.on_surface;
@@ -489,11 +491,17 @@ TEST(SurfaceRemesh, QualitySmoothingKeepsTheAnglesWhileItRaisesQuality) {
     SurfaceQuality q = start;
     std::size_t moves = 0;
     for (int pass = 0; pass < 20; ++pass) {
+      // No vertex dies here (the last sweeps compacted, splits only add), so result() keeps the
+      // complex's vertex numbering.
+      const std::vector<Eigen::Vector3d> at = c.result(input).points;
       std::vector<int> moved;
       c.smooth_low_quality(below, poor, moved);
       if (moved.empty()) break;
       moves += moved.size();
-      const SurfaceQuality next = surface_quality(c.result(input));
+      const TriSurface now = c.result(input);
+      ASSERT_EQ(now.points.size(), at.size());
+      for (int v : moved) EXPECT_NE(now.points[static_cast<std::size_t>(v)], at[static_cast<std::size_t>(v)]) << "vertex " << v;
+      const SurfaceQuality next = surface_quality(now);
       EXPECT_GE(next.q_min, q.q_min) << "L " << L << " pass " << pass;
       EXPECT_GE(std::min(next.min_angle_deg, 30.0), std::min(q.min_angle_deg, 30.0)) << "L " << L << " pass " << pass;
       EXPECT_LE(next.p30_percent, q.p30_percent) << "L " << L << " pass " << pass;
@@ -505,7 +513,8 @@ TEST(SurfaceRemesh, QualitySmoothingKeepsTheAnglesWhileItRaisesQuality) {
 }
 
 TEST(SurfaceRemesh, FinalQualitySmoothingRaisesTheWorstTriangle) {
-  // When the remeshed surface's Q_min is under the paper's 2.1K Q_min (0.486), remesh_surface ends
+  // When the remeshed surface's Q_min is under kQualitySmoothingBelow (the paper's 2.1K Q_min,
+  // 0.486), remesh_surface ends
   // with the quality smoothing and says so in a progress note: "Q_min A -> B, N moves". On the
   // coarse phantom at budget 1,500 (measured when written: 0.3222 -> 0.3469, 2 moves) the note's
   // B is the result's Q_min and above A. Mutation check (no final smoothing): no such note.
@@ -521,7 +530,7 @@ TEST(SurfaceRemesh, FinalQualitySmoothingRaisesTheWorstTriangle) {
   ASSERT_FALSE(note.empty());
   double before = 0.0, after = 0.0;
   ASSERT_EQ(std::sscanf(note.c_str() + note.find("Q_min "), "Q_min %lf -> %lf", &before, &after), 2) << note;
-  EXPECT_LT(before, 0.486) << note;
+  EXPECT_LT(before, kQualitySmoothingBelow) << note;
   EXPECT_GT(after, before) << note;
   EXPECT_NEAR(surface_quality(r.surface).q_min, after, kPrintedFourDecimals) << note;
   EXPECT_GT(r.quality_moves, 0u);
