@@ -14,8 +14,7 @@ namespace tissuemesh {
 namespace {
 
 double min_dihedral(const TetMesh& m, const std::array<int, 4>& t) {
-  const TetShape s = tet_shape(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
-  return *std::min_element(s.dihedral_deg.begin(), s.dihedral_deg.end());
+  return tet_volume_and_min_dihedral(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]).min_dihedral_deg;
 }
 
 }  // namespace

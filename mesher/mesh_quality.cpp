@@ -123,27 +123,48 @@ std::string table_row(const TissueQuality& q, int name_width) {
   return row.str();
 }
 
+/// The edge vectors from a, the area vectors of the faces opposite each node, all pointing towards
+/// that node when the tet is positively oriented (all away from it when inverted), so that the
+/// interior angle formula of dihedral_deg holds for either orientation, and 6 * signed volume.
+struct TetFrame {
+  Eigen::Vector3d ab, ac, ad;
+  std::array<Eigen::Vector3d, 4> n;
+  double det;
+  TetFrame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d)
+      : ab(b - a), ac(c - a), ad(d - a), n{(d - b).cross(c - b), ac.cross(ad), ad.cross(ab), ab.cross(ac)},
+        det(ab.dot(n[1])) {}
+  /// Dihedral angle at edge kTetEdges[i]: the faces through it are those opposite the nodes of the
+  /// opposite edge (5 - i). With inward normals the interior angle is pi minus the angle between
+  /// them; atan2 stays accurate near 0 and 180 degrees where acos of a cosine loses half the digits.
+  double dihedral_deg(std::size_t i) const {
+    const auto [k, l] = kTetEdges[5 - i];
+    return std::atan2(n[k].cross(n[l]).norm(), -n[k].dot(n[l])) * kDegPerRad;
+  }
+};
+
 }  // namespace
+
+TetVolumeAndAngle tet_volume_and_min_dihedral(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                              const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
+  const TetFrame f(a, b, c, d);
+  double smallest = f.dihedral_deg(0);
+  for (std::size_t i = 1; i < kTetEdges.size(); ++i) {
+    const double angle = f.dihedral_deg(i);
+    if (angle < smallest) smallest = angle;  // std::min_element's rule over tet_shape's angles
+  }
+  return {f.det / 6.0, smallest};
+}
 
 TetShape tet_shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    const Eigen::Vector3d& d) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ad = d - a;
-  // Area vectors of the faces opposite each node, all pointing towards that node when the tet is
-  // positively oriented (all away from it when inverted), so that the interior angle formula below
-  // holds for either orientation.
-  const std::array<Eigen::Vector3d, 4> n{(d - b).cross(c - b), ac.cross(ad), ad.cross(ab),
-                                         ab.cross(ac)};
-  const double det = ab.dot(n[1]);  // 6 * signed volume
+  const TetFrame f(a, b, c, d);
+  const Eigen::Vector3d &ab = f.ab, &ac = f.ac, &ad = f.ad;
+  const std::array<Eigen::Vector3d, 4>& n = f.n;
+  const double det = f.det;  // 6 * signed volume
 
   TetShape s;
   s.volume_mm3 = det / 6.0;
-  for (std::size_t i = 0; i < kTetEdges.size(); ++i) {
-    // The faces through edge i are those opposite the nodes of the opposite edge (5 - i). With
-    // inward normals the interior angle is pi minus the angle between them; atan2 stays accurate
-    // near 0 and 180 degrees where acos of a cosine loses half the digits.
-    const auto [k, l] = kTetEdges[5 - i];
-    s.dihedral_deg[i] = std::atan2(n[k].cross(n[l]).norm(), -n[k].dot(n[l])) * kDegPerRad;
-  }
+  for (std::size_t i = 0; i < kTetEdges.size(); ++i) s.dihedral_deg[i] = f.dihedral_deg(i);
 
   // r = 3|V| / area = |det| / (2 area) and R = |m| / (2 |det|), where m / (2 det) is the
   // circumcentre relative to a; so 3 r / R = 3 det^2 / (area |m|): no division by a tiny det.

@@ -64,6 +64,15 @@ struct TetShape {
 TetShape tet_shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    const Eigen::Vector3d& d);
 
+/// What the sliver repairs look at, bit for bit the values of tet_shape (the same arithmetic) at a
+/// fraction of its cost: the signed volume (mm^3) and the smallest dihedral angle (degrees).
+struct TetVolumeAndAngle {
+  double volume_mm3;
+  double min_dihedral_deg;
+};
+TetVolumeAndAngle tet_volume_and_min_dihedral(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                              const Eigen::Vector3d& c, const Eigen::Vector3d& d);
+
 /// Histogram of dihedral angles: every tet contributes all six of its angles, so the counts sum to
 /// 6 * tets. Bin i holds angles in [i * bin_width_deg, (i + 1) * bin_width_deg); 180 degrees falls
 /// in the last bin. An angle within 1e-9 degrees below a bin edge counts in the upper bin, so that

@@ -35,8 +35,8 @@ class FlipMesh {
   }
 
   double min_dihedral(const std::array<int, 4>& t) const {
-    const TetShape s = tet_shape(m_.points[t[0]], m_.points[t[1]], m_.points[t[2]], m_.points[t[3]]);
-    return *std::min_element(s.dihedral_deg.begin(), s.dihedral_deg.end());
+    return tet_volume_and_min_dihedral(m_.points[t[0]], m_.points[t[1]], m_.points[t[2]], m_.points[t[3]])
+        .min_dihedral_deg;
   }
   double volume(const std::array<int, 4>& t) const {
     return signed_tet_volume(m_.points[t[0]], m_.points[t[1]], m_.points[t[2]], m_.points[t[3]]);
