@@ -4,7 +4,6 @@
 #include "mesher/mesh_quality.h"
 #include "mesher/tet_faces.h"
 
-#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <unordered_map>

@@ -64,8 +64,10 @@ struct TetShape {
 TetShape tet_shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    const Eigen::Vector3d& d);
 
-/// What the sliver repairs look at, bit for bit the values of tet_shape (the same arithmetic) at a
-/// fraction of its cost: the signed volume (mm^3) and the smallest dihedral angle (degrees).
+/// What the sliver repairs look at, bit for bit the values of tet_shape (the same arithmetic; the
+/// file is compiled without floating-point contraction so that no build fuses it differently in
+/// the two) at a fraction of its cost: the signed volume (mm^3) and the smallest dihedral angle
+/// (degrees).
 struct TetVolumeAndAngle {
   double volume_mm3;
   double min_dihedral_deg;

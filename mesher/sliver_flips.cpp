@@ -29,8 +29,8 @@ struct NewTet {
 class FlipMesh {
  public:
   explicit FlipMesh(TetMesh& m) : m_(m), alive_(m.tets.size(), 1), quality_(m.tets.size()) {
-    // Each tet's quality on its own (two threads); the face map sized once for its ~2 faces per
-    // tet (nothing iterates over it, so its bucket count changes no result).
+    // Each tet's quality on its own (two threads); the face map reserved for its ~2 faces per tet
+    // (nothing iterates over it, so its bucket count changes no result).
     const auto n = static_cast<std::ptrdiff_t>(m.tets.size());
 #pragma omp parallel for schedule(static) num_threads(2)
     for (std::ptrdiff_t t = 0; t < n; ++t)
