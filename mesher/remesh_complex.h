@@ -223,9 +223,11 @@ class RemeshComplex {
     int poor_angles;
   };
   RingShape ring_shape(int v, const Vector3d& p, double poor_angle_rad) const;
-  /// Marks (1) the vertices of every live triangle (a, b, c) for which bad(a, b, c) holds.
+  /// Live triangles (a, b, c) for which bad(a, b, c) holds, in index order.
   template <class Bad>
-  std::vector<char> vertices_of_triangles(Bad bad) const;
+  std::vector<int> triangles_where(Bad bad) const;
+  /// Marks (1) the vertices of `triangles`.
+  std::vector<char> vertices_of(const std::vector<int>& triangles) const;
   /// Shorter of the two junction edges at curve vertex v with v at p (mm). Curve moves must not
   /// shorten it: projecting midpoints onto a junction loop smaller than h otherwise pulls the
   /// loop's vertices together (Laplacian shrinkage), down to micrometre edges that a volume

@@ -46,6 +46,21 @@ std::size_t RemeshComplex::sweep_edges(EdgeOperation operation) {
   return n;
 }
 
+template <class Bad>
+std::vector<int> RemeshComplex::triangles_where(Bad bad) const {
+  std::vector<int> out;
+  for (std::size_t t = 0; t < tri_.size(); ++t)
+    if (tri_alive_[t] && bad(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]])) out.push_back(static_cast<int>(t));
+  return out;
+}
+
+std::vector<char> RemeshComplex::vertices_of(const std::vector<int>& triangles) const {
+  std::vector<char> marked(x_.size(), 0);
+  for (int t : triangles)
+    for (int v : tri_[t]) marked[v] = 1;
+  return marked;
+}
+
 std::size_t RemeshComplex::split_long() {
   return sweep_edges([this](int a, int b) { return relative_length(a, b) > kSplitAbove && split(a, b); });
 }
@@ -141,19 +156,9 @@ void RemeshComplex::relax() {
   }
 }
 
-template <class Bad>
-std::vector<char> RemeshComplex::vertices_of_triangles(Bad bad) const {
-  std::vector<char> marked(x_.size(), 0);
-  for (std::size_t t = 0; t < tri_.size(); ++t)
-    if (tri_alive_[t] && bad(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]))
-      for (int v : tri_[t]) marked[v] = 1;
-  return marked;
-}
-
 void RemeshComplex::smooth_poor(double min_angle_rad, std::vector<int>& moved_vertices) {
   rebuild_grid();
-  const std::vector<char> todo = vertices_of_triangles(
-      [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) { return min_angle(a, b, c) < min_angle_rad; });
+  const std::vector<char> todo = vertices_of(poor_triangles(min_angle_rad));
   std::vector<int> nb;
   for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
     if (!todo[v] || !vertex_alive_[v] || kind_[v] == Kind::Corner) continue;
@@ -240,8 +245,8 @@ bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
 
 void RemeshComplex::smooth_low_quality(double q_below, double min_angle_rad, std::vector<int>& moved_vertices) {
   rebuild_grid();
-  const std::vector<char> todo = vertices_of_triangles(
-      [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) { return triangle_quality(a, b, c) < q_below; });
+  const std::vector<char> todo = vertices_of(triangles_where(
+      [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) { return triangle_quality(a, b, c) < q_below; }));
   std::vector<int> nb;
   for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
     if (!todo[v] || !vertex_alive_[v] || kind_[v] != Kind::Surface) continue;
@@ -275,11 +280,8 @@ std::size_t RemeshComplex::cap_poor_triangles(double min_angle_rad) {
 }
 
 std::vector<int> RemeshComplex::poor_triangles(double min_angle_rad) const {
-  std::vector<int> out;
-  for (std::size_t t = 0; t < tri_.size(); ++t)
-    if (tri_alive_[t] && min_angle(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]) < min_angle_rad)
-      out.push_back(static_cast<int>(t));
-  return out;
+  return triangles_where(
+      [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) { return min_angle(a, b, c) < min_angle_rad; });
 }
 
 int RemeshComplex::extreme_edge(const std::array<int, 3>& q, bool longest) const {

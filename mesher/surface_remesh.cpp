@@ -123,6 +123,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   // when it improves the Table 1 minima (improves_table1_minima); otherwise, or when the repair
   // fails, the polished complex stays, unchanged.
   RemeshComplex* chosen = &m;
+  SurfaceQuality quality = first;  // of `result`, the chosen complex's surface
   std::unique_ptr<RemeshComplex> repaired;
   if (options.repair && first.p30_percent > 0.0) {
     auto trial = std::make_unique<RemeshComplex>(m);
@@ -141,6 +142,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
         repaired = std::move(trial);
         chosen = repaired.get();
         result = std::move(trial_result);
+        quality = q;
         smoothed += trial_moves;  // like splits, collapses and flips: every pass that shaped the result
       }
     } catch (const MeshingError& e) {
@@ -154,8 +156,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   // take its smallest angle below min(its value, 30 degrees) (RemeshComplex::smooth_low_quality).
   // At most as many passes as the angle smoothing; on the phantom they stop after 1-5 moves.
   std::size_t quality_moves = 0;
-  const double q_before = surface_quality(result).q_min;
-  if (q_before < kQualitySmoothingBelow) {
+  if (quality.q_min < kQualitySmoothingBelow) {
     for (int k = 0; k < kAngleSmoothingPasses; ++k) {
       std::vector<int> moved;
       chosen->smooth_low_quality(kQualitySmoothingBelow, poor, moved);
@@ -164,7 +165,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     }
     if (quality_moves > 0) result = chosen->result(input);
     stage.note("quality smoothing around triangles under Q " + format_double("%.3f", kQualitySmoothingBelow) + ": Q_min " +
-               format_double("%.4f", q_before) + " -> " + format_double("%.4f", surface_quality(result).q_min) + ", " +
+               format_double("%.4f", quality.q_min) + " -> " + format_double("%.4f", surface_quality(result).q_min) + ", " +
                std::to_string(quality_moves) + " moves");
   }
   RemeshResult r;
