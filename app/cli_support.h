@@ -51,7 +51,6 @@ void add_model_job_options(CLI::App& sub, ModelJobOptions& options);
 /// InputError when `out` is empty and returns true.
 bool print_config_or_require_out(bool print_config, const std::string& effective_yaml, const std::string& out);
 
-
 /// The command line as typed (for run records).
 std::string command_line(int argc, char** argv);
 
