@@ -1,0 +1,105 @@
+#include "mesher/free_cell_grid.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tissuemesh {
+
+namespace {
+constexpr int kTouched = -1;
+constexpr int kUnvisited = -2;
+}  // namespace
+
+FreeCellGrid::FreeCellGrid(const std::vector<Eigen::Vector3d>& points,
+                           const std::vector<std::array<int, 3>>& triangles, double cell_mm, std::size_t max_cells)
+    : origin_(Eigen::Vector3d::Zero()), cell_(cell_mm) {
+  if (points.empty() || triangles.empty() || !(cell_mm > 0)) return;
+  Eigen::AlignedBox3d box;
+  for (const auto& p : points) box.extend(p);
+  origin_ = box.min() - Eigen::Vector3d::Constant(cell_);
+  const Eigen::Vector3d extent = box.sizes() + Eigen::Vector3d::Constant(2 * cell_);
+  auto size_dims = [&] {
+    for (int a = 0; a < 3; ++a) dims_[a] = std::max(1L, static_cast<long>(std::ceil(extent[a] / cell_)));
+    return static_cast<double>(dims_[0]) * dims_[1] * dims_[2];
+  };
+  while (size_dims() > static_cast<double>(max_cells)) cell_ *= 1.25;
+  component_.assign(static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]), kUnvisited);
+  auto index = [&](long i, long j, long k) { return static_cast<std::size_t>((k * dims_[1] + j) * dims_[0] + i); };
+
+  // A margin far above rounding (coordinates of a few hundred mm carry ~1e-13 mm of error) and
+  // far below the cell, so marking stays conservative at no measurable cost in free cells.
+  const double margin = 1e-3 * cell_;
+  const double half = 0.5 * cell_ + margin;
+  for (const auto& t : triangles) {
+    const Eigen::Vector3d& a = points[t[0]];
+    const Eigen::Vector3d& b = points[t[1]];
+    const Eigen::Vector3d& c = points[t[2]];
+    const Eigen::Vector3d lo = a.cwiseMin(b).cwiseMin(c) - origin_ - Eigen::Vector3d::Constant(margin);
+    const Eigen::Vector3d hi = a.cwiseMax(b).cwiseMax(c) - origin_ + Eigen::Vector3d::Constant(margin);
+    std::array<long, 3> i0{}, i1{};
+    for (int d = 0; d < 3; ++d) {
+      i0[d] = std::clamp(static_cast<long>(std::floor(lo[d] / cell_)), 0L, dims_[d] - 1);
+      i1[d] = std::clamp(static_cast<long>(std::floor(hi[d] / cell_)), 0L, dims_[d] - 1);
+    }
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    const double length = n.norm();
+    const bool has_plane = length > 0 && std::isfinite(length);  // else degenerate: mark its whole box
+    if (has_plane) n /= length;
+    // Projection radius of a grown cell on the normal: beyond it, all eight corners are strictly
+    // on one side of the plane and the cell cannot meet the triangle.
+    const double reach = half * n.cwiseAbs().sum() + margin;
+    for (long k = i0[2]; k <= i1[2]; ++k)
+      for (long j = i0[1]; j <= i1[1]; ++j)
+        for (long i = i0[0]; i <= i1[0]; ++i) {
+          if (has_plane) {
+            const Eigen::Vector3d centre = origin_ + cell_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+            if (std::abs(n.dot(centre - a)) > reach) continue;
+          }
+          component_[index(i, j, k)] = kTouched;
+        }
+  }
+
+  std::vector<std::array<long, 3>> stack;
+  std::size_t free = 0;
+  for (long k = 0; k < dims_[2]; ++k)
+    for (long j = 0; j < dims_[1]; ++j)
+      for (long i = 0; i < dims_[0]; ++i) {
+        if (component_[index(i, j, k)] != kUnvisited) continue;
+        const int id = static_cast<int>(seeds_.size());
+        seeds_.push_back(origin_ + cell_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5));
+        component_[index(i, j, k)] = id;
+        stack.push_back({i, j, k});
+        while (!stack.empty()) {
+          const auto cell = stack.back();
+          stack.pop_back();
+          ++free;
+          for (int d = 0; d < 3; ++d)
+            for (long step : {-1L, 1L}) {
+              auto next = cell;
+              next[d] += step;
+              if (next[d] < 0 || next[d] >= dims_[d]) continue;
+              int& slot = component_[index(next[0], next[1], next[2])];
+              if (slot != kUnvisited) continue;
+              slot = id;
+              stack.push_back(next);
+            }
+        }
+      }
+  free_share_ = static_cast<double>(free) / static_cast<double>(component_.size());
+}
+
+int FreeCellGrid::component(const Eigen::Vector3d& x) const {
+  if (component_.empty()) return kTouched;
+  std::array<long, 3> ijk{};
+  for (int d = 0; d < 3; ++d) {
+    const double u = std::floor((x[d] - origin_[d]) / cell_);
+    if (!(u >= 0 && u < static_cast<double>(dims_[d]))) return kTouched;  // also catches NaN
+    ijk[d] = static_cast<long>(u);
+  }
+  return component_[static_cast<std::size_t>((ijk[2] * dims_[1] + ijk[1]) * dims_[0] + ijk[0])];
+}
+
+}  // namespace tissuemesh

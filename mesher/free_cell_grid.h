@@ -1,0 +1,50 @@
+// FreeCellGrid: a uniform grid over a triangle surface's bounding box whose cells that no triangle
+// touches ("free" cells) are grouped into face-connected components. Two face-adjacent free cells
+// form a box that no triangle meets, so every point of a component lies in the same region of the
+// surface's partition of space: one inside/outside query per component answers it for all of its
+// points. The volume mesher uses it to answer CGAL's region queries away from the surface without
+// shooting a ray each time (mesher/complex_mesher.cpp).
+//
+// Conservative: a cell is marked touched when the triangle's bounding box meets the cell grown by a
+// margin and the cell's corners are not all strictly on one side of the triangle's plane (grown by
+// the same margin); a touched cell that no triangle actually meets only costs a slower query.
+// Points on a cell's faces belong to the cell floor() picks, which is closed, so the argument holds
+// for them too. Deterministic: components are numbered in x-fastest scan order of their first cell.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace tissuemesh {
+
+class FreeCellGrid {
+ public:
+  /// Grid of cubic cells of edge `cell_mm` (> 0) over the bounding box of `points` (the vertices
+  /// of `triangles`), enlarged by `cell_mm` so the cells at its border stay free where no triangle
+  /// is; the cell grows as needed to keep the grid within `max_cells`.
+  FreeCellGrid(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int, 3>>& triangles,
+               double cell_mm, std::size_t max_cells = 16u << 20);
+
+  /// Component of the free cell holding `x`, or -1 when that cell is touched or `x` is outside
+  /// the grid (or not finite).
+  int component(const Eigen::Vector3d& x) const;
+  std::size_t components() const { return seeds_.size(); }
+  /// The centre of the first cell (scan order) of component `c`: a point to classify it by.
+  const Eigen::Vector3d& seed(std::size_t c) const { return seeds_[c]; }
+  double cell_mm() const { return cell_; }
+  /// Share of the grid's cells that are free (0..1; a diagnostic).
+  double free_share() const { return free_share_; }
+
+ private:
+  Eigen::Vector3d origin_;
+  double cell_ = 1.0;
+  std::array<long, 3> dims_{};
+  std::vector<int> component_;  ///< per cell (x fastest): -1 touched, else the component
+  std::vector<Eigen::Vector3d> seeds_;
+  double free_share_ = 0;
+};
+
+}  // namespace tissuemesh
