@@ -22,6 +22,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <type_traits>
 #include <utility>
 
 namespace tissuemesh {
@@ -70,6 +71,24 @@ class Domain : public ComplexDomain {
     }
   };
   Is_in_domain is_in_domain_object() const { return Is_in_domain{*this}; }
+
+  // The surface intersection of a facet's dual segment: none when the segment only crosses free
+  // cells (no triangle there), which CGAL's tree search would also find, only slower.
+  struct Construct_intersection {
+    const Domain& domain;
+    template <class Query>
+    Intersection operator()(const Query& q) const {
+      if constexpr (std::is_same_v<Query, Segment_3>) {
+        const Point_3& a = q.source();
+        const Point_3& b = q.target();
+        if (domain.grid_ && domain.grid_->segment_is_free(Eigen::Vector3d(a.x(), a.y(), a.z()),
+                                                          Eigen::Vector3d(b.x(), b.y(), b.z())))
+          return Intersection();
+      }
+      return ComplexDomain::Construct_intersection(domain)(q);
+    }
+  };
+  Construct_intersection construct_intersection_object() const { return Construct_intersection{*this}; }
 
  private:
   std::optional<FreeCellGrid> grid_;

@@ -102,4 +102,25 @@ int FreeCellGrid::component(const Eigen::Vector3d& x) const {
   return component_[static_cast<std::size_t>((ijk[2] * dims_[1] + ijk[1]) * dims_[0] + ijk[0])];
 }
 
+
+bool FreeCellGrid::segment_is_free(const Eigen::Vector3d& a, const Eigen::Vector3d& b, long max_cells) const {
+  if (component_.empty()) return false;
+  std::array<long, 3> lo{}, hi{};
+  long cells = 1;
+  for (int d = 0; d < 3; ++d) {
+    const double u0 = std::floor((std::min(a[d], b[d]) - origin_[d]) / cell_);
+    const double u1 = std::floor((std::max(a[d], b[d]) - origin_[d]) / cell_);
+    if (!(u0 >= 0 && u1 < static_cast<double>(dims_[d]))) return false;  // also catches NaN
+    lo[d] = static_cast<long>(u0);
+    hi[d] = static_cast<long>(u1);
+    cells *= hi[d] - lo[d] + 1;
+  }
+  if (cells > max_cells) return false;
+  for (long k = lo[2]; k <= hi[2]; ++k)
+    for (long j = lo[1]; j <= hi[1]; ++j)
+      for (long i = lo[0]; i <= hi[0]; ++i)
+        if (component_[static_cast<std::size_t>((k * dims_[1] + j) * dims_[0] + i)] < 0) return false;
+  return true;
+}
+
 }  // namespace tissuemesh

@@ -2,8 +2,9 @@
 // touches ("free" cells) are grouped into face-connected components. Two face-adjacent free cells
 // form a box that no triangle meets, so every point of a component lies in the same region of the
 // surface's partition of space: one inside/outside query per component answers it for all of its
-// points. The volume mesher uses it to answer CGAL's region queries away from the surface without
-// shooting a ray each time (mesher/complex_mesher.cpp).
+// points, and a segment whose bounding box covers only free cells meets no triangle. The volume
+// mesher uses both to answer CGAL's region and facet-dual intersection queries away from the
+// surface without searching the triangles each time (mesher/complex_mesher.cpp).
 //
 // Conservative: a cell is marked touched when the triangle's bounding box meets the cell grown by a
 // margin and the cell's corners are not all strictly on one side of the triangle's plane (grown by
@@ -31,6 +32,10 @@ class FreeCellGrid {
   /// Component of the free cell holding `x`, or -1 when that cell is touched or `x` is outside
   /// the grid (or not finite).
   int component(const Eigen::Vector3d& x) const;
+  /// True when every cell that the bounding box of segment [a, b] overlaps is free, so that no
+  /// triangle meets the segment; false otherwise (also when the box leaves the grid or spans more
+  /// than `max_cells` cells, which are not worth scanning).
+  bool segment_is_free(const Eigen::Vector3d& a, const Eigen::Vector3d& b, long max_cells = 512) const;
   std::size_t components() const { return seeds_.size(); }
   /// The centre of the first cell (scan order) of component `c`: a point to classify it by.
   const Eigen::Vector3d& seed(std::size_t c) const { return seeds_[c]; }

@@ -101,3 +101,35 @@ TEST(FreeCellGrid, TheCellGrowsToKeepTheGridWithinItsLimit) {
   // The cubes' box is ~70 mm wide with the border: 100,000 cells give cells of at least ~1.5 mm.
   EXPECT_GT(grid.cell_mm(), 1.4);
 }
+
+TEST(FreeCellGrid, AFreeSegmentNeverCrossesTheSurface) {
+  const NestedCubes cubes;
+  const FreeCellGrid grid(cubes.points, cubes.triangles, 1.3);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coordinate(-40, 40), offset(-6, 6);
+  std::size_t free = 0, crossing_refused = 0;
+  for (int n = 0; n < 100000; ++n) {
+    const Eigen::Vector3d a(coordinate(rng), coordinate(rng), coordinate(rng));
+    const Eigen::Vector3d b = a + Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
+    const int ra = cubes.region(a), rb = cubes.region(b);
+    if (!grid.segment_is_free(a, b)) {
+      crossing_refused += ra != rb;
+      continue;
+    }
+    ++free;
+    // Both ends in one region, and every point between them in a free cell of one component.
+    ASSERT_EQ(ra, rb);
+    const int c = grid.component(a);
+    ASSERT_GE(c, 0);
+    for (int i = 1; i <= 16; ++i) ASSERT_EQ(grid.component(a + (i / 16.0) * (b - a)), c);
+  }
+  EXPECT_GT(free, 10000u);
+  EXPECT_GT(crossing_refused, 1000u);  // the segments that do cross were asked and refused
+  // A segment leaving the grid, or spanning more cells than asked for, is not vouched for.
+  EXPECT_FALSE(grid.segment_is_free(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(500, 0, 0)));
+  Eigen::Vector3d low = cubes.points[0];
+  for (const auto& p : cubes.points) low = low.cwiseMin(p);
+  const Eigen::Vector3d corner = low - Eigen::Vector3d::Constant(1.0);
+  EXPECT_TRUE(grid.segment_is_free(corner, corner + Eigen::Vector3d(0.1, 0.1, 0.1)));
+  EXPECT_FALSE(grid.segment_is_free(corner, corner + Eigen::Vector3d(0.1, 0.1, 0.1), 0));
+}
