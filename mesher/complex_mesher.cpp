@@ -2,7 +2,7 @@
 #include "mesher/complex_mesher.h"
 
 #include "core/errors.h"
-#include "mesher/free_cell_grid.h"
+#include "mesher/free_cell_domain.h"
 #include "mesher/mesh3_steps.h"
 #include "mesher/surface_pieces.h"
 #include "mesher/surface_projection.h"
@@ -16,13 +16,11 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polyhedral_complex_mesh_domain_3.h>
 #include <CGAL/make_mesh_3.h>
-#include <CGAL/point_generators_3.h>
 
 #include <cmath>
 #include <functional>
 #include <memory>
 #include <optional>
-#include <type_traits>
 #include <utility>
 
 namespace tissuemesh {
@@ -31,70 +29,7 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Polyhedron = CGAL::Mesh_polyhedron_3<K>::type;
-using ComplexDomain = CGAL::Polyhedral_complex_mesh_domain_3<K>;
-
-// CGAL's polyhedral complex domain tells which tissue a point is in by shooting a ray in a random
-// direction to the first surface triangle it meets, for every cell and facet the refinement
-// creates. Away from the surface a FreeCellGrid answers instead: one ray per component of free
-// cells, shot once. The answer is the same (the component lies in one region), and so is CGAL's
-// random sequence: the fast path draws the direction the ray would have taken, so the meshes stay
-// bit-identical to the ray-shooting ones.
-class Domain : public ComplexDomain {
- public:
-  using ComplexDomain::ComplexDomain;
-
-  /// Builds the grid over `surface` (the triangles of the polyhedra) with cells of `cell_mm`.
-  void index_regions(const TriSurface& surface, double cell_mm) {
-    grid_.emplace(surface.points, surface.triangles, cell_mm);
-    CGAL::Random::State state;
-    CGAL::get_default_random().save_state(state);
-    const ComplexDomain::Is_in_domain shoot(*this);
-    regions_.clear();
-    for (std::size_t c = 0; c < grid_->components(); ++c) {
-      const Eigen::Vector3d& x = grid_->seed(c);
-      regions_.push_back(shoot(Point_3(x[0], x[1], x[2])));
-    }
-    CGAL::get_default_random().restore_state(state);
-  }
-  const FreeCellGrid& grid() const { return *grid_; }
-
-  struct Is_in_domain {
-    const Domain& domain;
-    Subdomain operator()(const Point_3& p) const {
-      const CGAL::Bbox_3& box = domain.bounding_aabb_tree_ptr()->bbox();
-      const bool inside_box = p.x() >= box.xmin() && p.x() <= box.xmax() && p.y() >= box.ymin() &&
-                              p.y() <= box.ymax() && p.z() >= box.zmin() && p.z() <= box.zmax();
-      const int c = inside_box && domain.grid_ ? domain.grid_->component(Eigen::Vector3d(p.x(), p.y(), p.z())) : -1;
-      if (c < 0) return ComplexDomain::Is_in_domain(domain)(p);
-      CGAL::Random_points_on_sphere_3<Point_3> unused_direction(1.);
-      return domain.regions_[c];
-    }
-  };
-  Is_in_domain is_in_domain_object() const { return Is_in_domain{*this}; }
-
-  // The surface intersection of a facet's dual segment: none when the segment only crosses free
-  // cells (no triangle there), which CGAL's tree search would also find, only slower.
-  struct Construct_intersection {
-    const Domain& domain;
-    template <class Query>
-    Intersection operator()(const Query& q) const {
-      if constexpr (std::is_same_v<Query, Segment_3>) {
-        const Point_3& a = q.source();
-        const Point_3& b = q.target();
-        if (domain.grid_ && domain.grid_->segment_is_free(Eigen::Vector3d(a.x(), a.y(), a.z()),
-                                                          Eigen::Vector3d(b.x(), b.y(), b.z())))
-          return Intersection();
-      }
-      return ComplexDomain::Construct_intersection(domain)(q);
-    }
-  };
-  Construct_intersection construct_intersection_object() const { return Construct_intersection{*this}; }
-
- private:
-  std::optional<FreeCellGrid> grid_;
-  std::vector<Subdomain> regions_;  ///< per grid component
-};
-
+using Domain = FreeCellDomain;
 using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
 using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, Domain::Curve_index>;
 using Criteria = CGAL::Mesh_criteria_3<Tr>;
@@ -154,9 +89,10 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
   // Piece borders (junction curves) and creases sharper than feature_angle_deg become features.
   domain.detect_features(params.feature_angle_deg);
   const double mean_edge_mm = surface_quality(surface).mean_edge_mm;
-  domain.index_regions(surface, 0.5 * mean_edge_mm);
-  domain_stage->note(std::to_string(domain.grid().components()) + " free-cell regions, " +
-                     std::to_string(static_cast<int>(100 * domain.grid().free_share())) + " % of the grid free");
+  const auto [grid, unknown] = domain.index_regions(surface, 0.5 * mean_edge_mm);
+  domain_stage->note(std::to_string(grid->components()) + " free-cell regions (" + std::to_string(unknown) +
+                     " left to rays), " + std::to_string(static_cast<int>(100 * grid->free_share())) +
+                     " % of the grid free");
   domain_stage.reset();
 
   namespace p = CGAL::parameters;

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace tissuemesh {
 
@@ -16,16 +15,16 @@ constexpr int kUnvisited = -2;
 FreeCellGrid::FreeCellGrid(const std::vector<Eigen::Vector3d>& points,
                            const std::vector<std::array<int, 3>>& triangles, double cell_mm, std::size_t max_cells)
     : origin_(Eigen::Vector3d::Zero()), cell_(cell_mm) {
-  if (points.empty() || triangles.empty() || !(cell_mm > 0)) return;
+  if (points.empty() || triangles.empty() || !(cell_mm > 0) || max_cells == 0) return;
   Eigen::AlignedBox3d box;
   for (const auto& p : points) box.extend(p);
+  if (!box.sizes().allFinite()) return;
+  // Cells per axis for the box with a one-cell border on each side; the cell grows until the
+  // grid fits max_cells (counted in doubles, so a tiny cell cannot overflow the count).
+  auto cells_per_axis = [&](int a) { return std::ceil(box.sizes()[a] / cell_) + 2.0; };
+  while (cells_per_axis(0) * cells_per_axis(1) * cells_per_axis(2) > static_cast<double>(max_cells)) cell_ *= 1.25;
+  for (int a = 0; a < 3; ++a) dims_[a] = static_cast<long>(cells_per_axis(a));
   origin_ = box.min() - Eigen::Vector3d::Constant(cell_);
-  const Eigen::Vector3d extent = box.sizes() + Eigen::Vector3d::Constant(2 * cell_);
-  auto size_dims = [&] {
-    for (int a = 0; a < 3; ++a) dims_[a] = std::max(1L, static_cast<long>(std::ceil(extent[a] / cell_)));
-    return static_cast<double>(dims_[0]) * dims_[1] * dims_[2];
-  };
-  while (size_dims() > static_cast<double>(max_cells)) cell_ *= 1.25;
   component_.assign(static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]), kUnvisited);
   auto index = [&](long i, long j, long k) { return static_cast<std::size_t>((k * dims_[1] + j) * dims_[0] + i); };
 
@@ -41,12 +40,14 @@ FreeCellGrid::FreeCellGrid(const std::vector<Eigen::Vector3d>& points,
     const Eigen::Vector3d hi = a.cwiseMax(b).cwiseMax(c) - origin_ + Eigen::Vector3d::Constant(margin);
     std::array<long, 3> i0{}, i1{};
     for (int d = 0; d < 3; ++d) {
-      i0[d] = std::clamp(static_cast<long>(std::floor(lo[d] / cell_)), 0L, dims_[d] - 1);
-      i1[d] = std::clamp(static_cast<long>(std::floor(hi[d] / cell_)), 0L, dims_[d] - 1);
+      i0[d] = static_cast<long>(std::clamp(std::floor(lo[d] / cell_), 0.0, static_cast<double>(dims_[d] - 1)));
+      i1[d] = static_cast<long>(std::clamp(std::floor(hi[d] / cell_), 0.0, static_cast<double>(dims_[d] - 1)));
     }
+    // The plane test needs a trustworthy normal: for a needle or nearly flat triangle the cross
+    // product is mostly rounding and points anywhere, so such a triangle marks its whole box.
     Eigen::Vector3d n = (b - a).cross(c - a);
     const double length = n.norm();
-    const bool has_plane = length > 0 && std::isfinite(length);  // else degenerate: mark its whole box
+    const bool has_plane = length > 1e-6 * (b - a).norm() * (c - a).norm() && std::isfinite(length);
     if (has_plane) n /= length;
     // Projection radius of a grown cell on the normal: beyond it, all eight corners are strictly
     // on one side of the plane and the cell cannot meet the triangle.
@@ -62,8 +63,11 @@ FreeCellGrid::FreeCellGrid(const std::vector<Eigen::Vector3d>& points,
         }
   }
 
-  std::vector<std::array<long, 3>> stack;
+  // Face-connected flood fill over the free cells, in scan order.
+  std::vector<std::size_t> stack;
   std::size_t free = 0;
+  const std::array<std::size_t, 3> stride{1, static_cast<std::size_t>(dims_[0]),
+                                          static_cast<std::size_t>(dims_[0] * dims_[1])};
   for (long k = 0; k < dims_[2]; ++k)
     for (long j = 0; j < dims_[1]; ++j)
       for (long i = 0; i < dims_[0]; ++i) {
@@ -71,21 +75,24 @@ FreeCellGrid::FreeCellGrid(const std::vector<Eigen::Vector3d>& points,
         const int id = static_cast<int>(seeds_.size());
         seeds_.push_back(origin_ + cell_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5));
         component_[index(i, j, k)] = id;
-        stack.push_back({i, j, k});
+        stack.push_back(index(i, j, k));
         while (!stack.empty()) {
-          const auto cell = stack.back();
+          const std::size_t cell = stack.back();
           stack.pop_back();
           ++free;
-          for (int d = 0; d < 3; ++d)
-            for (long step : {-1L, 1L}) {
-              auto next = cell;
-              next[d] += step;
-              if (next[d] < 0 || next[d] >= dims_[d]) continue;
-              int& slot = component_[index(next[0], next[1], next[2])];
-              if (slot != kUnvisited) continue;
-              slot = id;
-              stack.push_back(next);
+          const std::array<long, 3> at{static_cast<long>(cell % stride[1]),
+                                       static_cast<long>((cell / stride[1]) % static_cast<std::size_t>(dims_[1])),
+                                       static_cast<long>(cell / stride[2])};
+          for (int d = 0; d < 3; ++d) {
+            if (at[d] > 0 && component_[cell - stride[d]] == kUnvisited) {
+              component_[cell - stride[d]] = id;
+              stack.push_back(cell - stride[d]);
             }
+            if (at[d] + 1 < dims_[d] && component_[cell + stride[d]] == kUnvisited) {
+              component_[cell + stride[d]] = id;
+              stack.push_back(cell + stride[d]);
+            }
+          }
         }
       }
   free_share_ = static_cast<double>(free) / static_cast<double>(component_.size());
@@ -102,6 +109,15 @@ int FreeCellGrid::component(const Eigen::Vector3d& x) const {
   return component_[static_cast<std::size_t>((ijk[2] * dims_[1] + ijk[1]) * dims_[0] + ijk[0])];
 }
 
+Eigen::AlignedBox3d FreeCellGrid::cell_box(const Eigen::Vector3d& x) const {
+  Eigen::Vector3d lo;
+  for (int d = 0; d < 3; ++d) {
+    const double u = std::floor((x[d] - origin_[d]) / cell_);
+    if (component_.empty() || !(u >= 0 && u < static_cast<double>(dims_[d]))) return {};
+    lo[d] = origin_[d] + u * cell_;
+  }
+  return {lo, lo + Eigen::Vector3d::Constant(cell_)};
+}
 
 bool FreeCellGrid::segment_is_free(const Eigen::Vector3d& a, const Eigen::Vector3d& b, long max_cells) const {
   if (component_.empty()) return false;

@@ -7,13 +7,16 @@
 // surface without searching the triangles each time (mesher/complex_mesher.cpp).
 //
 // Conservative: a cell is marked touched when the triangle's bounding box meets the cell grown by a
-// margin and the cell's corners are not all strictly on one side of the triangle's plane (grown by
-// the same margin); a touched cell that no triangle actually meets only costs a slower query.
-// Points on a cell's faces belong to the cell floor() picks, which is closed, so the argument holds
-// for them too. Deterministic: components are numbered in x-fastest scan order of their first cell.
+// margin (a thousandth of the cell, far above rounding) and the cell's corners are not all
+// strictly on one side of the triangle's plane (grown by the same margin); a needle or nearly flat
+// triangle, whose computed normal is unreliable, marks its whole box. A touched cell that no
+// triangle actually meets only costs a slower query; the margin is what keeps points near a
+// cell's faces safe against rounding. Deterministic: components are numbered in x-fastest scan
+// order of their first cell.
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <array>
 #include <cstddef>
@@ -24,8 +27,9 @@ namespace tissuemesh {
 class FreeCellGrid {
  public:
   /// Grid of cubic cells of edge `cell_mm` (> 0) over the bounding box of `points` (the vertices
-  /// of `triangles`), enlarged by `cell_mm` so the cells at its border stay free where no triangle
-  /// is; the cell grows as needed to keep the grid within `max_cells`.
+  /// of `triangles`) with a border of one cell on each side, so the cells outside the box stay free
+  /// where no triangle is; the cell grows (by 1.25 at a time) until the grid fits `max_cells`. An
+  /// empty or non-finite input, or max_cells 0, gives an empty grid that answers nothing.
   FreeCellGrid(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int, 3>>& triangles,
                double cell_mm, std::size_t max_cells = 16u << 20);
 
@@ -36,6 +40,8 @@ class FreeCellGrid {
   /// triangle meets the segment; false otherwise (also when the box leaves the grid or spans more
   /// than `max_cells` cells, which are not worth scanning).
   bool segment_is_free(const Eigen::Vector3d& a, const Eigen::Vector3d& b, long max_cells = 512) const;
+  /// The closed box of the grid cell holding `x`; empty when `x` is outside the grid.
+  Eigen::AlignedBox3d cell_box(const Eigen::Vector3d& x) const;
   std::size_t components() const { return seeds_.size(); }
   /// The centre of the first cell (scan order) of component `c`: a point to classify it by.
   const Eigen::Vector3d& seed(std::size_t c) const { return seeds_[c]; }

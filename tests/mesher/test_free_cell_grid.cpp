@@ -1,9 +1,11 @@
-// FreeCellGrid (mesher/free_cell_grid.h): no triangle passes through a free cell, and all points
-// of a component lie in one region. Checked on two nested cubes, rotated so that their large
-// triangles cut the grid cells obliquely, against exact half-space tests of the cubes.
+// FreeCellGrid (mesher/free_cell_grid.h): no triangle meets a free cell, and all points of a
+// component lie in one region. Checked on two nested cubes (tests/support/nested_cubes.h) whose
+// large triangles cut the cells obliquely, plus needle and cap triangles, against an independent
+// separating-axis test and the cubes' exact half-space test.
 #include "mesher/free_cell_grid.h"
 
-#include <Eigen/Geometry>
+#include "support/nested_cubes.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,62 +13,95 @@
 #include <random>
 
 using namespace tissuemesh;
+using tissuemesh::test::NestedCubes;
 
 namespace {
 
-struct NestedCubes {
-  Eigen::Matrix3d rotation;
-  double outer_half = 20, inner_half = 8;
-  std::vector<Eigen::Vector3d> points;
-  std::vector<std::array<int, 3>> triangles;
+// Separating-axis test of a triangle against a closed box (Akenine-Moller's 13 axes): true when
+// no axis separates them strictly. A degenerate axis (parallel edges) never separates, so the
+// test errs towards "overlap", the safe side for checking that free cells meet no triangle.
+bool overlaps(const Eigen::Vector3d& a0, const Eigen::Vector3d& b0, const Eigen::Vector3d& c0,
+              const Eigen::AlignedBox3d& box) {
+  const Eigen::Vector3d centre = box.center(), half = 0.5 * box.sizes();
+  const Eigen::Vector3d v[3] = {a0 - centre, b0 - centre, c0 - centre};
+  const Eigen::Vector3d e[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
+  auto separates = [&](const Eigen::Vector3d& axis) {
+    const double p0 = axis.dot(v[0]), p1 = axis.dot(v[1]), p2 = axis.dot(v[2]);
+    const double r = half.cwiseProduct(axis.cwiseAbs()).sum();
+    return std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r;
+  };
+  for (int d = 0; d < 3; ++d)
+    if (separates(Eigen::Vector3d::Unit(d))) return false;
+  if (separates(e[0].cross(e[1]))) return false;
+  for (const auto& edge : e)
+    for (int d = 0; d < 3; ++d)
+      if (separates(edge.cross(Eigen::Vector3d::Unit(d)))) return false;
+  return true;
+}
 
-  NestedCubes() {
-    rotation = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitX()) *
-                Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()))
-                   .toRotationMatrix();
-    add_cube(outer_half);
-    add_cube(inner_half);
-  }
-  void add_cube(double h) {
-    const int base = static_cast<int>(points.size());
-    for (int c = 0; c < 8; ++c)
-      points.push_back(rotation * Eigen::Vector3d(c & 1 ? h : -h, c & 2 ? h : -h, c & 4 ? h : -h) +
-                       Eigen::Vector3d(3.1, -2.2, 0.7));
-    // Two triangles per face (corner c has x = bit 0, y = bit 1, z = bit 2).
-    const int faces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
-    for (const auto& f : faces) {
-      triangles.push_back({base + f[0], base + f[1], base + f[2]});
-      triangles.push_back({base + f[0], base + f[2], base + f[3]});
+// Every free cell of `grid` (visited through their centres) against every triangle of `s`.
+std::size_t free_cells_checked(const FreeCellGrid& grid, const TriSurface& s, const Eigen::Vector3d& low) {
+  const double h = grid.cell_mm();
+  const Eigen::Vector3d origin = grid.cell_box(low - Eigen::Vector3d::Constant(0.5 * h)).min();
+  std::size_t free = 0;
+  for (int k = 0;; ++k) {
+    if (grid.cell_box(origin + h * Eigen::Vector3d(0.5, 0.5, k + 0.5)).isEmpty()) break;
+    for (int j = 0;; ++j) {
+      if (grid.cell_box(origin + h * Eigen::Vector3d(0.5, j + 0.5, k + 0.5)).isEmpty()) break;
+      for (int i = 0;; ++i) {
+        const Eigen::Vector3d x = origin + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
+        const Eigen::AlignedBox3d box = grid.cell_box(x);
+        if (box.isEmpty()) break;
+        if (grid.component(x) < 0) continue;
+        ++free;
+        for (const auto& t : s.triangles)
+          EXPECT_FALSE(overlaps(s.points[t[0]], s.points[t[1]], s.points[t[2]], box))
+              << "a triangle meets the free cell at " << x.transpose();
+      }
     }
   }
-  // 0 outside, 1 between the cubes, 2 inside the inner one; -1 on a cube's boundary (exactly).
-  int region(const Eigen::Vector3d& x) const {
-    const Eigen::Vector3d local = rotation.transpose() * (x - Eigen::Vector3d(3.1, -2.2, 0.7));
-    const double m = local.cwiseAbs().maxCoeff();
-    if (m == inner_half || m == outer_half) return -1;
-    return m < inner_half ? 2 : m < outer_half ? 1 : 0;
+  return free;
+}
+
+// The cubes plus two nearly collinear triangles across the grid whose computed normal is mostly
+// rounding (at 45 to 60 degrees from the plane it should be perpendicular to): a corner on the
+// segment between the two others (as rounded) but for one coordinate moved by one ulp.
+TriSurface with_slivers(const NestedCubes& cubes) {
+  TriSurface s = cubes.surface;
+  const Eigen::Vector3d p = cubes.shift + Eigen::Vector3d(-31.3, -21.7, -24.1), q = p + Eigen::Vector3d(47.9, 43.3, 55.2);
+  for (double t : {0.13, 0.37}) {
+    const int n = static_cast<int>(s.points.size());
+    Eigen::Vector3d c = p + t * (q - p);
+    c.y() = std::nextafter(c.y(), 1e9);
+    s.points.insert(s.points.end(), {p, q, c});
+    s.triangles.push_back({n, n + 1, n + 2});
   }
-};
+  return s;
+}
 
 }  // namespace
 
-TEST(FreeCellGrid, EveryComponentLiesInOneRegionAndNoTriangleCrossesAFreeCell) {
+TEST(FreeCellGrid, NoTriangleMeetsAFreeCell) {
   const NestedCubes cubes;
-  const FreeCellGrid grid(cubes.points, cubes.triangles, 1.3);
+  const TriSurface s = with_slivers(cubes);
+  const FreeCellGrid grid(s.points, s.triangles, 1.3);
+  EXPECT_GT(free_cells_checked(grid, s, cubes.low()), 50000u);
+
+  // Far from the origin, where rounding is coarser, and with a cell grown to fit a small grid.
+  TriSurface moved = with_slivers(cubes);
+  for (auto& p : moved.points) p += Eigen::Vector3d(1e5, -3e4, 2e5);
+  const FreeCellGrid far_grid(moved.points, moved.triangles, 1.3);
+  EXPECT_GT(free_cells_checked(far_grid, moved, cubes.low() + Eigen::Vector3d(1e5, -3e4, 2e5)), 50000u);
+  const FreeCellGrid grown(s.points, s.triangles, 0.01, 20000);
+  EXPECT_GT(grown.cell_mm(), 2.0);  // ~70 mm across in at most ~27 cells per axis
+  EXPECT_GT(free_cells_checked(grown, s, cubes.low()), 1000u);
+}
+
+TEST(FreeCellGrid, EveryComponentLiesInOneRegion) {
+  const NestedCubes cubes;
+  const FreeCellGrid grid(cubes.surface.points, cubes.surface.triangles, 1.3);
   ASSERT_GE(grid.components(), 3u);  // outside, between, inside at least
   EXPECT_GT(grid.free_share(), 0.5);
-
-  // Points on the triangles (a barycentric lattice, edges and corners included) are never in a
-  // free cell.
-  for (const auto& t : cubes.triangles)
-    for (int i = 0; i <= 40; ++i)
-      for (int j = 0; i + j <= 40; ++j) {
-        const Eigen::Vector3d x = cubes.points[t[0]] + (i / 40.0) * (cubes.points[t[1]] - cubes.points[t[0]]) +
-                                  (j / 40.0) * (cubes.points[t[2]] - cubes.points[t[0]]);
-        ASSERT_EQ(grid.component(x), -1) << "a point of a triangle lies in a free cell";
-      }
-
-  // Random points of a free cell are in the region of their component's seed.
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> coordinate(-40, 40);
   std::size_t in_free = 0;
@@ -82,29 +117,24 @@ TEST(FreeCellGrid, EveryComponentLiesInOneRegionAndNoTriangleCrossesAFreeCell) {
 
 TEST(FreeCellGrid, PointsOutsideTheGridOrNotFiniteAreNotAnswered) {
   const NestedCubes cubes;
-  const FreeCellGrid grid(cubes.points, cubes.triangles, 1.3);
+  const FreeCellGrid grid(cubes.surface.points, cubes.surface.triangles, 1.3);
   EXPECT_EQ(grid.component(Eigen::Vector3d(500, 0, 0)), -1);
+  EXPECT_TRUE(grid.cell_box(Eigen::Vector3d(500, 0, 0)).isEmpty());
   EXPECT_EQ(grid.component(Eigen::Vector3d(std::numeric_limits<double>::quiet_NaN(), 0, 0)), -1);
   // In the grid's one-cell border, beyond a corner of the cubes' box (far from the rotated cube):
   // free and outside.
-  Eigen::Vector3d low = cubes.points[0];
-  for (const auto& p : cubes.points) low = low.cwiseMin(p);
-  const int c = grid.component(low - Eigen::Vector3d::Constant(1.0));
+  const int c = grid.component(cubes.low() - Eigen::Vector3d::Constant(1.0));
   ASSERT_GE(c, 0);
   EXPECT_EQ(cubes.region(grid.seed(static_cast<std::size_t>(c))), 0);
-}
-
-TEST(FreeCellGrid, TheCellGrowsToKeepTheGridWithinItsLimit) {
-  const NestedCubes cubes;
-  const FreeCellGrid grid(cubes.points, cubes.triangles, 0.01, 100000);
-  EXPECT_GT(grid.cell_mm(), 0.01);
-  // The cubes' box is ~70 mm wide with the border: 100,000 cells give cells of at least ~1.5 mm.
-  EXPECT_GT(grid.cell_mm(), 1.4);
+  // No cells at all: nothing is answered.
+  const FreeCellGrid none(cubes.surface.points, cubes.surface.triangles, 1.3, 0);
+  EXPECT_EQ(none.component(cubes.low() - Eigen::Vector3d::Constant(1.0)), -1);
+  EXPECT_EQ(none.components(), 0u);
 }
 
 TEST(FreeCellGrid, AFreeSegmentNeverCrossesTheSurface) {
   const NestedCubes cubes;
-  const FreeCellGrid grid(cubes.points, cubes.triangles, 1.3);
+  const FreeCellGrid grid(cubes.surface.points, cubes.surface.triangles, 1.3);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coordinate(-40, 40), offset(-6, 6);
   std::size_t free = 0, crossing_refused = 0;
@@ -127,9 +157,7 @@ TEST(FreeCellGrid, AFreeSegmentNeverCrossesTheSurface) {
   EXPECT_GT(crossing_refused, 1000u);  // the segments that do cross were asked and refused
   // A segment leaving the grid, or spanning more cells than asked for, is not vouched for.
   EXPECT_FALSE(grid.segment_is_free(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(500, 0, 0)));
-  Eigen::Vector3d low = cubes.points[0];
-  for (const auto& p : cubes.points) low = low.cwiseMin(p);
-  const Eigen::Vector3d corner = low - Eigen::Vector3d::Constant(1.0);
+  const Eigen::Vector3d corner = cubes.low() - Eigen::Vector3d::Constant(1.0);
   EXPECT_TRUE(grid.segment_is_free(corner, corner + Eigen::Vector3d(0.1, 0.1, 0.1)));
   EXPECT_FALSE(grid.segment_is_free(corner, corner + Eigen::Vector3d(0.1, 0.1, 0.1), 0));
 }
