@@ -65,6 +65,8 @@ class FreeCellDomain : public ComplexDomain {
   struct Is_in_domain {
     const FreeCellDomain& domain;
     Subdomain operator()(const Point_3& p) const {
+      // Outside the tree's box CGAL answers "outside" without drawing a direction; the grid's
+      // border cells reach beyond that box, so they must not take the drawing path.
       const CGAL::Bbox_3& box = domain.bounding_aabb_tree_ptr()->bbox();
       const bool inside_box = p.x() >= box.xmin() && p.x() <= box.xmax() && p.y() >= box.ymin() &&
                               p.y() <= box.ymax() && p.z() >= box.zmin() && p.z() <= box.zmax();

@@ -26,7 +26,6 @@ FreeCellGrid::FreeCellGrid(const std::vector<Eigen::Vector3d>& points,
   for (int a = 0; a < 3; ++a) dims_[a] = static_cast<long>(cells_per_axis(a));
   origin_ = box.min() - Eigen::Vector3d::Constant(cell_);
   component_.assign(static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]), kUnvisited);
-  auto index = [&](long i, long j, long k) { return static_cast<std::size_t>((k * dims_[1] + j) * dims_[0] + i); };
 
   // A margin far above rounding (coordinates of a few hundred mm carry ~1e-13 mm of error) and
   // far below the cell, so marking stays conservative at no measurable cost in free cells.
@@ -98,44 +97,36 @@ FreeCellGrid::FreeCellGrid(const std::vector<Eigen::Vector3d>& points,
   free_share_ = static_cast<double>(free) / static_cast<double>(component_.size());
 }
 
-int FreeCellGrid::component(const Eigen::Vector3d& x) const {
-  if (component_.empty()) return kTouched;
-  std::array<long, 3> ijk{};
+bool FreeCellGrid::cell_of(const Eigen::Vector3d& x, std::array<long, 3>& ijk) const {
+  if (component_.empty()) return false;
   for (int d = 0; d < 3; ++d) {
     const double u = std::floor((x[d] - origin_[d]) / cell_);
-    if (!(u >= 0 && u < static_cast<double>(dims_[d]))) return kTouched;  // also catches NaN
+    if (!(u >= 0 && u < static_cast<double>(dims_[d]))) return false;  // also catches NaN
     ijk[d] = static_cast<long>(u);
   }
-  return component_[static_cast<std::size_t>((ijk[2] * dims_[1] + ijk[1]) * dims_[0] + ijk[0])];
+  return true;
+}
+
+int FreeCellGrid::component(const Eigen::Vector3d& x) const {
+  std::array<long, 3> ijk{};
+  return cell_of(x, ijk) ? component_[index(ijk[0], ijk[1], ijk[2])] : kTouched;
 }
 
 Eigen::AlignedBox3d FreeCellGrid::cell_box(const Eigen::Vector3d& x) const {
-  Eigen::Vector3d lo;
-  for (int d = 0; d < 3; ++d) {
-    const double u = std::floor((x[d] - origin_[d]) / cell_);
-    if (component_.empty() || !(u >= 0 && u < static_cast<double>(dims_[d]))) return {};
-    lo[d] = origin_[d] + u * cell_;
-  }
+  std::array<long, 3> ijk{};
+  if (!cell_of(x, ijk)) return {};
+  const Eigen::Vector3d lo = origin_ + cell_ * Eigen::Vector3d(ijk[0], ijk[1], ijk[2]);
   return {lo, lo + Eigen::Vector3d::Constant(cell_)};
 }
 
 bool FreeCellGrid::segment_is_free(const Eigen::Vector3d& a, const Eigen::Vector3d& b, long max_cells) const {
-  if (component_.empty()) return false;
   std::array<long, 3> lo{}, hi{};
-  long cells = 1;
-  for (int d = 0; d < 3; ++d) {
-    const double u0 = std::floor((std::min(a[d], b[d]) - origin_[d]) / cell_);
-    const double u1 = std::floor((std::max(a[d], b[d]) - origin_[d]) / cell_);
-    if (!(u0 >= 0 && u1 < static_cast<double>(dims_[d]))) return false;  // also catches NaN
-    lo[d] = static_cast<long>(u0);
-    hi[d] = static_cast<long>(u1);
-    cells *= hi[d] - lo[d] + 1;
-  }
-  if (cells > max_cells) return false;
+  if (!cell_of(a.cwiseMin(b), lo) || !cell_of(a.cwiseMax(b), hi)) return false;
+  if ((hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1) > max_cells) return false;
   for (long k = lo[2]; k <= hi[2]; ++k)
     for (long j = lo[1]; j <= hi[1]; ++j)
       for (long i = lo[0]; i <= hi[0]; ++i)
-        if (component_[static_cast<std::size_t>((k * dims_[1] + j) * dims_[0] + i)] < 0) return false;
+        if (component_[index(i, j, k)] < 0) return false;
   return true;
 }
 

@@ -50,6 +50,13 @@ class FreeCellGrid {
   double free_share() const { return free_share_; }
 
  private:
+  /// Position of cell (i, j, k) in component_ (x fastest).
+  std::size_t index(long i, long j, long k) const {
+    return static_cast<std::size_t>((k * dims_[1] + j) * dims_[0] + i);
+  }
+  /// The cell holding `x` in `ijk`; false when the grid is empty or `x` is outside it (or NaN).
+  bool cell_of(const Eigen::Vector3d& x, std::array<long, 3>& ijk) const;
+
   Eigen::Vector3d origin_;
   double cell_ = 1.0;
   std::array<long, 3> dims_{};
