@@ -1,6 +1,7 @@
 #include "solver_check/linear_solver.h"
 
 #include "core/errors.h"
+#include "solver_check/single_precision_factor.h"
 
 #include <Eigen/SparseCholesky>
 #ifdef TISSUEMESH_HAVE_CHOLMOD
@@ -27,6 +28,33 @@ constexpr double kMinShift = 1e-8;
 constexpr double kMaxShift = 1e-2;
 constexpr double kShiftFactor = 100.0;
 
+#ifdef TISSUEMESH_HAVE_CHOLMOD
+/// Eigen's CHOLMOD wrapper, with its factor readable (for the single-precision copy).
+class CholmodLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> {
+ public:
+  /// The supernodal LL' factor of the last successful factorize() (CHOLMOD's int layout).
+  SupernodalFactorView factor() const {
+    const cholmod_factor& L = *m_cholmodFactor;
+    SupernodalFactorView v;
+    v.n = static_cast<int>(L.n);
+    v.nsuper = static_cast<int>(L.nsuper);
+    v.super = static_cast<const int*>(L.super);
+    v.pi = static_cast<const int*>(L.pi);
+    v.px = static_cast<const int*>(L.px);
+    v.rows = static_cast<const int*>(L.s);
+    v.values = static_cast<const double*>(L.x);
+    v.perm = static_cast<const int*>(L.Perm);
+    return v;
+  }
+  /// True when factor() can be read: supernodal LL', real, int indices.
+  bool factor_readable() const {
+    const cholmod_factor* L = m_cholmodFactor;
+    return L && L->is_super && L->is_ll && L->xtype == CHOLMOD_REAL && L->itype == CHOLMOD_INT &&
+           L->dtype == CHOLMOD_DOUBLE;
+  }
+};
+#endif
+
 }  // namespace
 
 bool cholmod_available() {
@@ -52,7 +80,9 @@ struct SparseSpdSolver::Impl {
   double sigma_start = kMinShift;
   bool last_shifted = false;  ///< the last factorisation was shifted
 #ifdef TISSUEMESH_HAVE_CHOLMOD
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholmod;
+  CholmodLLT cholmod;
+  /// The kept exact factorisation in single precision: CG's preconditioner (empty: use cholmod).
+  SinglePrecisionFactor preconditioner;
 #endif
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
   bool analysed = false;
@@ -63,6 +93,14 @@ struct SparseSpdSolver::Impl {
     if (use_cholmod) return cholmod.solve(r);
 #endif
     return ldlt.solve(r);
+  }
+
+  /// CG's preconditioner: the kept factor, in single precision when there is a copy.
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+#ifdef TISSUEMESH_HAVE_CHOLMOD
+    if (use_cholmod && !preconditioner.empty()) return preconditioner.solve(r, z);
+#endif
+    z = apply_factor(r);
   }
 
   /// Factorises K; returns false when nothing works. CHOLMOD: when K is not positive definite
@@ -93,6 +131,10 @@ struct SparseSpdSolver::Impl {
         if (cholmod.info() == Eigen::Success) {
           if (!last_shifted) sigma_start = std::max(kMinShift, sigma_start / kShiftFactor);
           last_shifted = false;
+          if (cholmod.factor_readable())
+            preconditioner.assign(cholmod.factor());
+          else
+            preconditioner = SinglePrecisionFactor();
           return exact_factor = true;
         }
         ++failed;
@@ -135,7 +177,9 @@ struct SparseSpdSolver::Impl {
     const auto A = K.selfadjointView<Eigen::Lower>();
     const double target = rtol * b.norm();
     x = Eigen::VectorXd::Zero(b.size());
-    Eigen::VectorXd r = b, z = apply_factor(r), p = z, Ap(b.size());
+    Eigen::VectorXd r = b, z, z_previous, p, Ap(b.size());
+    precondition(r, z);
+    p = z;
     double rz = r.dot(z);
     for (int k = 0; k < max_iterations; ++k) {
       if (r.norm() <= target) return CgOutcome::Converged;
@@ -147,9 +191,12 @@ struct SparseSpdSolver::Impl {
       x += alpha * p;
       r -= alpha * Ap;
       ++iterations;
-      z = apply_factor(r);
+      z_previous.swap(z);
+      precondition(r, z);
+      // Polak-Ribiere's beta (flexible CG): a preconditioner rounded to single precision is not
+      // exactly a fixed symmetric operator, and this form keeps CG converging regardless.
       const double rz_next = r.dot(z);
-      p = z + (rz_next / rz) * p;
+      p = z + ((rz_next - r.dot(z_previous)) / rz) * p;
       rz = rz_next;
     }
     return r.norm() <= target && x.allFinite() ? CgOutcome::Converged : CgOutcome::NotConverged;

@@ -224,4 +224,10 @@ constexpr double kHandoffMinAngleDeg = 22.0;
 /// against the value computed from the surface: half a unit of the last printed digit.
 constexpr double kPrintedFourDecimals = 5e-5;
 
+/// A triangular solve in single precision (solver_check/single_precision_factor.h) against the
+/// double-precision solve of the same well-conditioned test matrix (condition number < 10):
+/// float's unit round-off 6e-8 times the few terms per entry and the condition number stays below
+/// 1e-6; 1e-5 leaves margin, while a lost or misdirected update is off by 1e-2 or more.
+constexpr double kSinglePrecisionSolveRel = 1e-5;
+
 }  // namespace tissuemesh::test

@@ -1,0 +1,77 @@
+// SinglePrecisionFactor: a single-precision copy of a supernodal Cholesky factor and its two
+// triangular solves, split over two threads: the preconditioner of the built-in solver's
+// conjugate gradients (solver_check/linear_solver.h).
+//
+// Why: on the 60K-tet benchmark model each CG iteration applies the kept factorisation once (a
+// forward and a backward triangular solve through its ~8M entries) and that costs ~20x the
+// multiplication by K; the solves stream the factor from memory. A float copy halves the bytes,
+// and the elimination tree of a nested-dissection ordering splits into independent subtrees that
+// two threads solve at the same time. A preconditioner only has to be close to K^-1: the float
+// factor's relative error (~1e-7) leaves CG's convergence unchanged, and CG itself still works on
+// K in double precision, so the solution's accuracy does not change.
+//
+// Factor layout (CHOLMOD's supernodal LL', read through SupernodalFactorView): A = P^T L L^T P;
+// supernode s holds columns super[s] .. super[s+1]-1 of L as a dense column-major block of
+// nsrow = pi[s+1] - pi[s] rows (row indices rows[pi[s]] ..., the first nscol of them the
+// supernode's own columns) at values[px[s]]; its diagonal block is lower triangular.
+//
+// Threads: the tree is split once per factor (assign) into two bins of subtrees of about equal
+// size and a top part (the separators above them) solved by one thread. Each bin accumulates its
+// updates of top rows in its own buffer; they are added in bin order. So the result depends on
+// the factor and the right-hand side only, not on how many threads run (one thread solves the
+// bins one after the other). Not thread-safe: one solve at a time per object.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace tissuemesh {
+
+/// Borrowed arrays of a supernodal LL' factor of an n x n matrix (the layout of the header comment).
+struct SupernodalFactorView {
+  int n = 0;
+  int nsuper = 0;
+  const int* super = nullptr;        ///< nsuper + 1 first columns
+  const int* pi = nullptr;           ///< nsuper + 1 offsets into rows
+  const int* px = nullptr;           ///< nsuper + 1 offsets into values
+  const int* rows = nullptr;         ///< row indices of the supernodes' blocks
+  const double* values = nullptr;    ///< the blocks, column-major
+  const int* perm = nullptr;         ///< perm[k]: the original index of row k of L (nullptr: identity)
+};
+
+class SinglePrecisionFactor {
+ public:
+  /// Copies the factor in single precision and plans the two-thread split. Throws std::invalid_argument
+  /// when the view is inconsistent (a supernode whose first rows are not its own columns).
+  void assign(const SupernodalFactorView& factor);
+  bool empty() const { return n_ == 0; }
+  /// z = (P^T L L^T P)^-1 r, computed in single precision.
+  void solve(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  /// Share of the factor's entries in the top part (solved by one thread), in [0, 1].
+  double top_share() const { return top_share_; }
+
+ private:
+  struct Subtree {
+    int first, last;  ///< supernodes first .. last (postorder: a subtree is a contiguous range)
+  };
+  void forward(int s, float* y, float* outside, int first, int last, std::vector<float>& scratch) const;
+  void backward(int s, float* y, std::vector<float>& scratch) const;
+
+  int n_ = 0;
+  std::vector<int> super_, pi_, rows_, col_super_;
+  std::vector<std::int64_t> px_;
+  std::vector<int> perm_;
+  std::vector<float> values_;
+  std::array<std::vector<Subtree>, 2> bins_;
+  std::vector<int> top_;  ///< supernodes above the bins, increasing
+  double top_share_ = 1.0;
+  // Work vectors, kept between solves.
+  std::vector<float> y_;
+  std::array<std::vector<float>, 2> outside_;
+  std::array<std::vector<float>, 2> scratch_;
+};
+
+}  // namespace tissuemesh
