@@ -27,6 +27,9 @@ constexpr int kMaxIterations = 25;
 constexpr double kMinShift = 1e-8;
 constexpr double kMaxShift = 1e-2;
 constexpr double kShiftFactor = 100.0;
+/// A rung is skipped only when it is below the shift CG proved too small by more than this
+/// relative margin: p^T K p carries rounding errors, and a rung at the bound itself is tried.
+constexpr double kProvenShiftMargin = 1e-6;
 
 #ifdef TISSUEMESH_HAVE_CHOLMOD
 /// Eigen's CHOLMOD wrapper, with its factor readable (for the single-precision copy).
@@ -106,7 +109,10 @@ struct SparseSpdSolver::Impl {
   /// Factorises K; returns false when nothing works. CHOLMOD: when K is not positive definite
   /// (known_indefinite: CG has just proved it, so the unshifted attempt is skipped), K + sigma *
   /// mean|K_ii| I for the shift ladder sigma = 1e-8, 1e-6, ... 1e-2, started at sigma_start.
-  bool factorise(const SparseMatrix& K, bool known_indefinite, int& shifted, int& failed) {
+  /// `proven_shift` (>= 0): a diagonal shift that CG's direction of negative curvature p proves
+  /// too small (p^T (K + s I) p < 0 for every s below it); rungs below it are skipped, as their
+  /// factorisation must fail.
+  bool factorise(const SparseMatrix& K, bool known_indefinite, double proven_shift, int& shifted, int& failed) {
     exact_factor = false;
 #ifdef TISSUEMESH_HAVE_CHOLMOD
     if (use_cholmod) {
@@ -141,6 +147,7 @@ struct SparseSpdSolver::Impl {
       }
       const double mean_diagonal = K.diagonal().cwiseAbs().mean();
       for (double sigma = sigma_start; sigma <= kMaxShift * (1.0 + 1e-9); sigma *= kShiftFactor) {
+        if (sigma * mean_diagonal < (1.0 - kProvenShiftMargin) * proven_shift) continue;
         cholmod.setShift(sigma * mean_diagonal);
         cholmod.factorize(K);
         if (cholmod.info() == Eigen::Success) {
@@ -155,6 +162,7 @@ struct SparseSpdSolver::Impl {
     }
 #endif
     (void)known_indefinite;
+    (void)proven_shift;
     (void)shifted;
     (void)failed;
     if (!analysed) {
@@ -171,9 +179,10 @@ struct SparseSpdSolver::Impl {
 
   /// Preconditioned conjugate gradients on K (lower triangle) from x = 0 until
   /// ||K x - b|| <= rtol ||b|| (Converged) or max_iterations (NotConverged). A direction p with
-  /// p^T K p <= 0 proves K not positive definite: it stops there (NegativeCurvature).
+  /// p^T K p <= 0 proves K not positive definite: it stops there (NegativeCurvature), with
+  /// proven_shift = -p^T K p / p^T p (K + s I is not positive definite for any s below it).
   CgOutcome pcg(const SparseMatrix& K, const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol,
-                int max_iterations, int& iterations) {
+                int max_iterations, int& iterations, double& proven_shift) {
     const auto A = K.selfadjointView<Eigen::Lower>();
     const double target = rtol * b.norm();
     x = Eigen::VectorXd::Zero(b.size());
@@ -186,7 +195,10 @@ struct SparseSpdSolver::Impl {
       Ap.noalias() = A * p;
       const double pAp = p.dot(Ap);
       if (!std::isfinite(rz) || !std::isfinite(pAp)) return CgOutcome::NotConverged;
-      if (!(pAp > 0.0)) return CgOutcome::NegativeCurvature;
+      if (!(pAp > 0.0)) {
+        proven_shift = -pAp / p.squaredNorm();
+        return CgOutcome::NegativeCurvature;
+      }
       const double alpha = rz / pAp;
       x += alpha * p;
       r -= alpha * Ap;
@@ -227,14 +239,15 @@ bool SparseSpdSolver::solve(const SparseMatrix& K, const Eigen::VectorXd& b, Eig
   // 1. The kept factorisation of an unshifted K as preconditioner. Negative curvature proves K
   // indefinite: the factorisation below then goes straight to the shift ladder.
   bool known_indefinite = false;
+  double proven_shift = 0.0;
   if (impl_->exact_factor) {
-    const Impl::CgOutcome outcome = impl_->pcg(K, b, x, rtol, kMaxIterations, iterations_);
+    const Impl::CgOutcome outcome = impl_->pcg(K, b, x, rtol, kMaxIterations, iterations_, proven_shift);
     if (outcome == Impl::CgOutcome::Converged) return true;
     known_indefinite = outcome == Impl::CgOutcome::NegativeCurvature;
   }
   // 2. A new factorisation.
   const auto start = std::chrono::steady_clock::now();
-  const bool factorised = impl_->factorise(K, known_indefinite, shifted_, failed_);
+  const bool factorised = impl_->factorise(K, known_indefinite, proven_shift, shifted_, failed_);
   factorisation_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!factorised) return false;
   ++factorisations_;

@@ -1,7 +1,8 @@
 // SparseSpdSolver (solver_check/linear_solver.h): direct and preconditioned solves to the
 // requested residual, and the shifted (damped) step for a tangent that is not positive definite:
-// which shift, how many attempts, and the attempts it saves (skipped unshifted try after CG's
-// proof of indefiniteness, ladder started at the last working shift).
+// which shift, how many attempts, and the attempts it saves (skipped unshifted try and rungs
+// below the shift CG's direction of negative curvature proves too small, ladder started at the
+// last working shift).
 #include "solver_check/linear_solver.h"
 
 #include "support/tolerances.h"
@@ -98,10 +99,11 @@ TEST_F(CholmodSolver, NegativeCurvatureInConjugateGradientsSkipsTheUnshiftedTry)
   ASSERT_TRUE(solver.solve(matrix(3.0, 1.0), b, x, 1e-4));
   ASSERT_EQ(solver.failed_factorisations(), 0);
   // The kept factor maps b to itself, and b^T K b = -0.01: CG's first direction proves K
-  // indefinite, so only the ladder's rungs 1e-8, 1e-6 and 1e-4 fail.
+  // indefinite, and K + s I too for any s below 0.01 (b^T b = 1). So neither the unshifted try nor
+  // the rungs 1e-8, 1e-6 and 1e-4 (times mean|K_ii| = 2.94) are attempted: nothing fails.
   const SparseMatrix K = matrix(3.0, -0.01);
   ASSERT_TRUE(solver.solve(K, b, x, 1e-4));
-  EXPECT_EQ(solver.failed_factorisations(), 3);
+  EXPECT_EQ(solver.failed_factorisations(), 0);
   EXPECT_EQ(solver.shifted_factorisations(), 1);
   const double expected = 1.0 / (-0.01 + 1e-2 * K.diagonal().cwiseAbs().mean());
   EXPECT_NEAR(x[kSize - 1], expected, kRelativeRoundoff * expected);
