@@ -32,6 +32,21 @@ Eigen::MatrixXd arrow_matrix() {
   return B;
 }
 
+/// The view of supernodal arrays (n = the last entry of `super`).
+SupernodalFactorView view_of(const std::vector<int>& super, const std::vector<int>& pi, const std::vector<int>& px,
+                             const std::vector<int>& rows, const std::vector<double>& values, const int* perm) {
+  SupernodalFactorView v;
+  v.n = super.back();
+  v.nsuper = static_cast<int>(super.size()) - 1;
+  v.super = super.data();
+  v.pi = pi.data();
+  v.px = px.data();
+  v.rows = rows.data();
+  v.values = values.data();
+  v.perm = perm;
+  return v;
+}
+
 /// The factor of B in the supernodal layout (values column-major per supernode), and the
 /// permutation perm[k] = the original index of row k: the matrix solved is A with
 /// A(perm[i], perm[j]) = B(i, j).
@@ -52,18 +67,7 @@ struct Factor {
     for (int i = 0; i < 7; ++i)
       for (int j = 0; j < 7; ++j) A(perm[i], perm[j]) = B(i, j);
   }
-  SupernodalFactorView view() const {
-    SupernodalFactorView v;
-    v.n = 7;
-    v.nsuper = 3;
-    v.super = super.data();
-    v.pi = pi.data();
-    v.px = px.data();
-    v.rows = rows.data();
-    v.values = values.data();
-    v.perm = perm.data();
-    return v;
-  }
+  SupernodalFactorView view() const { return view_of(super, pi, px, rows, values, perm.data()); }
 };
 
 Eigen::VectorXd right_hand_side() { return Eigen::VectorXd::LinSpaced(7, -1.0, 2.5); }
@@ -105,16 +109,8 @@ TEST(SinglePrecisionFactor, ATreeWithoutBranchesIsSolvedByOneThread) {
   const Eigen::MatrixXd L = B.llt().matrixL();
   std::vector<int> super{0, 7}, pi{0, 7}, px{0, 49}, rows{0, 1, 2, 3, 4, 5, 6};
   std::vector<double> values(L.data(), L.data() + 49);
-  SupernodalFactorView v;
-  v.n = 7;
-  v.nsuper = 1;
-  v.super = super.data();
-  v.pi = pi.data();
-  v.px = px.data();
-  v.rows = rows.data();
-  v.values = values.data();
   SinglePrecisionFactor factor;
-  factor.assign(v);
+  factor.assign(view_of(super, pi, px, rows, values, nullptr));
   EXPECT_EQ(factor.top_share(), 1.0);
   Eigen::VectorXd z;
   const Eigen::VectorXd b = right_hand_side(), exact = B.llt().solve(b);
