@@ -36,7 +36,9 @@ constexpr double kProvenShiftMargin = 1e-6;
 class CholmodLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> {
  public:
   /// The supernodal LL' factor of the last successful factorize() (CHOLMOD's int layout).
-  SupernodalFactorView factor() const {
+  /// SinglePrecisionFactor::assign() converts its values in place: solve() must not be called
+  /// after that until the next factorize(), which overwrites every value.
+  SupernodalFactorView factor() {
     const cholmod_factor& L = *m_cholmodFactor;
     SupernodalFactorView v;
     v.n = static_cast<int>(L.n);
@@ -45,7 +47,7 @@ class CholmodLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double
     v.pi = static_cast<const int*>(L.pi);
     v.px = static_cast<const int*>(L.px);
     v.rows = static_cast<const int*>(L.s);
-    v.values = static_cast<const double*>(L.x);
+    v.values = static_cast<double*>(L.x);
     v.perm = static_cast<const int*>(L.Perm);
     return v;
   }
@@ -84,7 +86,8 @@ struct SparseSpdSolver::Impl {
   bool last_shifted = false;  ///< the last factorisation was shifted
 #ifdef TISSUEMESH_HAVE_CHOLMOD
   CholmodLLT cholmod;
-  /// The kept exact factorisation in single precision: CG's preconditioner (empty: use cholmod).
+  /// The kept exact factorisation in single precision (in cholmod's own storage): CG's
+  /// preconditioner (empty: use cholmod).
   SinglePrecisionFactor preconditioner;
 #endif
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
@@ -96,6 +99,15 @@ struct SparseSpdSolver::Impl {
     if (use_cholmod) return cholmod.solve(r);
 #endif
     return ldlt.solve(r);
+  }
+
+  /// After the direct solve with a new unshifted CHOLMOD factor: the factor becomes CG's
+  /// single-precision preconditioner, converted in place (no memory beyond the factor's own);
+  /// cholmod.solve() is not used again until the next factorisation.
+  void keep_single_precision() {
+#ifdef TISSUEMESH_HAVE_CHOLMOD
+    if (use_cholmod && exact_factor && cholmod.factor_readable()) preconditioner.assign(cholmod.factor());
+#endif
   }
 
   /// CG's preconditioner: the kept factor, in single precision when there is a copy.
@@ -114,6 +126,9 @@ struct SparseSpdSolver::Impl {
   /// factorisation must fail.
   bool factorise(const SparseMatrix& K, bool known_indefinite, double proven_shift, int& shifted, int& failed) {
     exact_factor = false;
+#ifdef TISSUEMESH_HAVE_CHOLMOD
+    preconditioner.clear();  // its values are about to be overwritten
+#endif
 #ifdef TISSUEMESH_HAVE_CHOLMOD
     if (use_cholmod) {
       if (!analysed) {
@@ -137,10 +152,6 @@ struct SparseSpdSolver::Impl {
         if (cholmod.info() == Eigen::Success) {
           if (!last_shifted) sigma_start = std::max(kMinShift, sigma_start / kShiftFactor);
           last_shifted = false;
-          if (cholmod.factor_readable())
-            preconditioner.assign(cholmod.factor());
-          else
-            preconditioner = SinglePrecisionFactor();
           return exact_factor = true;
         }
         ++failed;
@@ -253,6 +264,7 @@ bool SparseSpdSolver::solve(const SparseMatrix& K, const Eigen::VectorXd& b, Eig
   ++factorisations_;
   // 3. The direct solve; with a shifted factor (K is not positive definite) the damped step.
   x = impl_->apply_factor(b);
+  impl_->keep_single_precision();
   return x.allFinite();
 }
 

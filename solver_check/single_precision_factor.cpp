@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <cstring>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -15,13 +16,10 @@ namespace {
 using BlockMap = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>;
 using VectorMap = Eigen::Map<Eigen::VectorXf>;
 
-/// The split stops when the larger bin holds at most this much more than half the bins' entries:
-/// closer balance than the two threads' noise buys nothing.
+/// Opening stops when the larger bin holds at most this much more than half the bins' entries
+/// (closer balance than the two threads' noise buys nothing), or after this many steps.
 constexpr double kBalance = 1.05;
-/// ... or when the top part (solved by one thread) would exceed this share of the entries, or after
-/// this many subtrees were opened up: a tree that does not split evenly then stays as it is.
-constexpr double kMaxTopShare = 0.25;
-constexpr int kMaxOpened = 64;
+constexpr int kMaxOpened = 256;
 
 }  // namespace
 
@@ -31,8 +29,7 @@ void SinglePrecisionFactor::assign(const SupernodalFactorView& f) {
   super_.assign(f.super, f.super + ns + 1);
   pi_.assign(f.pi, f.pi + ns + 1);
   px_.assign(f.px, f.px + ns + 1);
-  rows_.assign(f.rows, f.rows + pi_[ns]);
-  values_.assign(f.values, f.values + px_[ns]);  // double -> float
+  rows_ = f.rows;
   perm_.resize(n_);
   for (int k = 0; k < n_; ++k) perm_[k] = f.perm ? f.perm[k] : k;
   col_super_.assign(n_, -1);
@@ -48,6 +45,16 @@ void SinglePrecisionFactor::assign(const SupernodalFactorView& f) {
     }
     widest = std::max(widest, static_cast<std::size_t>(nsrow));
   }
+  // To single precision in place, in increasing order: float i (bytes 4i..4i+3) only overwrites
+  // doubles before i, which were read already.
+  float* converted = reinterpret_cast<float*>(f.values);
+  for (std::int64_t i = 0; i < px_[ns]; ++i) {
+    double v;
+    std::memcpy(&v, f.values + i, sizeof v);
+    const float w = static_cast<float>(v);
+    std::memcpy(converted + i, &w, sizeof w);
+  }
+  values_ = converted;
 
   // The elimination tree of the supernodes: a supernode's parent holds its first off-diagonal row.
   std::vector<int> parent(ns, -1), first(ns), count(ns, 1);
@@ -72,35 +79,38 @@ void SinglePrecisionFactor::assign(const SupernodalFactorView& f) {
   bool postordered = true;
   for (int s = 0; s < ns; ++s) postordered = postordered && count[s] == s - first[s] + 1;
 
-  // Open up the largest subtree (its root joins the top) until its children and the other
-  // subtrees fill two bins evenly; largest-first assignment to the lighter bin.
+  // Open up the largest subtree (its root joins the top) step by step; after each step the open
+  // subtrees go largest-first into the lighter of two bins. The split kept is the step with the
+  // least estimated time, top + larger bin (a nested-dissection tree often starts with a chain of
+  // separator supernodes that must all be opened before it branches).
   std::vector<int> open;
   for (int s = 0; s < ns; ++s)
     if (parent[s] < 0) open.push_back(s);
-  double top_work = 0.0;
+  double top_work = 0.0, best_time = total;
   auto by_work = [&](int a, int b) { return work[a] > work[b] || (work[a] == work[b] && a < b); };
   std::array<std::vector<int>, 2> assigned;
-  for (int opened = 0; postordered && !open.empty(); ++opened) {
+  for (int opened = 0; postordered && !open.empty() && opened <= kMaxOpened; ++opened) {
     std::sort(open.begin(), open.end(), by_work);
     std::array<double, 2> load{0.0, 0.0};
-    assigned = {};
+    std::array<std::vector<int>, 2> bins;
     for (int s : open) {
       const int b = load[1] < load[0] ? 1 : 0;
       load[b] += work[s];
-      assigned[b].push_back(s);
+      bins[b].push_back(s);
     }
-    const double half = 0.5 * (load[0] + load[1]);
-    if (open.size() >= 2 && std::max(load[0], load[1]) <= kBalance * half) break;
+    const double time = top_work + std::max(load[0], load[1]);
+    if (!bins[1].empty() && time < best_time) {
+      best_time = time;
+      assigned = bins;
+    }
     const int largest = open.front();
-    if (children[largest].empty()) break;  // a leaf: opening it cannot even the bins
-    const double own = work[largest] - std::accumulate(children[largest].begin(), children[largest].end(), 0.0,
-                                                       [&](double sum, int c) { return sum + work[c]; });
-    if (opened >= kMaxOpened || top_work + own > kMaxTopShare * total) break;
-    top_work += own;
+    if (children[largest].empty() || std::max(load[0], load[1]) <= kBalance * 0.5 * (load[0] + load[1])) break;
+    top_work += work[largest] - std::accumulate(children[largest].begin(), children[largest].end(), 0.0,
+                                                [&](double sum, int c) { return sum + work[c]; });
+    if (top_work >= best_time) break;  // no later step can beat the best
     open.erase(open.begin());
     open.insert(open.end(), children[largest].begin(), children[largest].end());
   }
-  if (!postordered || open.size() < 2) assigned = {};
   // Supernodes in no bin are the top part, solved in increasing order.
   std::vector<char> in_bin(ns, 0);
   for (int b = 0; b < 2; ++b) {
@@ -130,13 +140,13 @@ void SinglePrecisionFactor::assign(const SupernodalFactorView& f) {
 void SinglePrecisionFactor::forward(int s, float* y, float* outside, int first, int last,
                                     std::vector<float>& scratch) const {
   const int k1 = super_[s], nscol = super_[s + 1] - k1, nsrow = pi_[s + 1] - pi_[s], below = nsrow - nscol;
-  const BlockMap block(values_.data() + px_[s], nsrow, nscol, Eigen::OuterStride<>(nsrow));
+  const BlockMap block(values_ + px_[s], nsrow, nscol, Eigen::OuterStride<>(nsrow));
   VectorMap own(y + k1, nscol);
   block.topRows(nscol).triangularView<Eigen::Lower>().solveInPlace(own);
   if (below == 0) return;
   VectorMap update(scratch.data(), below);
   update.noalias() = block.bottomRows(below) * own;
-  const int* row = rows_.data() + pi_[s] + nscol;
+  const int* row = rows_ + pi_[s] + nscol;
   // Rows of this subtree's columns are updated in place, the others (top rows) in the bin's buffer.
   const int lo = first >= 0 ? super_[first] : 0, hi = first >= 0 ? super_[last + 1] : n_;
   for (int i = 0; i < below; ++i) {
@@ -147,11 +157,11 @@ void SinglePrecisionFactor::forward(int s, float* y, float* outside, int first, 
 
 void SinglePrecisionFactor::backward(int s, float* y, std::vector<float>& scratch) const {
   const int k1 = super_[s], nscol = super_[s + 1] - k1, nsrow = pi_[s + 1] - pi_[s], below = nsrow - nscol;
-  const BlockMap block(values_.data() + px_[s], nsrow, nscol, Eigen::OuterStride<>(nsrow));
+  const BlockMap block(values_ + px_[s], nsrow, nscol, Eigen::OuterStride<>(nsrow));
   VectorMap own(y + k1, nscol);
   if (below > 0) {
     VectorMap known(scratch.data(), below);
-    const int* row = rows_.data() + pi_[s] + nscol;
+    const int* row = rows_ + pi_[s] + nscol;
     for (int i = 0; i < below; ++i) known[i] = y[row[i]];
     own.noalias() -= block.bottomRows(below).transpose() * known;
   }

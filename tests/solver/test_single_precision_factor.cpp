@@ -34,7 +34,7 @@ Eigen::MatrixXd arrow_matrix() {
 
 /// The view of supernodal arrays (n = the last entry of `super`).
 SupernodalFactorView view_of(const std::vector<int>& super, const std::vector<int>& pi, const std::vector<int>& px,
-                             const std::vector<int>& rows, const std::vector<double>& values, const int* perm) {
+                             const std::vector<int>& rows, std::vector<double>& values, const int* perm) {
   SupernodalFactorView v;
   v.n = super.back();
   v.nsuper = static_cast<int>(super.size()) - 1;
@@ -67,13 +67,14 @@ struct Factor {
     for (int i = 0; i < 7; ++i)
       for (int j = 0; j < 7; ++j) A(perm[i], perm[j]) = B(i, j);
   }
-  SupernodalFactorView view() const { return view_of(super, pi, px, rows, values, perm.data()); }
+  /// Its view: a SinglePrecisionFactor assigned from it converts `values` in place.
+  SupernodalFactorView view() { return view_of(super, pi, px, rows, values, perm.data()); }
 };
 
 Eigen::VectorXd right_hand_side() { return Eigen::VectorXd::LinSpaced(7, -1.0, 2.5); }
 
 TEST(SinglePrecisionFactor, SolvesThePermutedSystemToSinglePrecision) {
-  const Factor f;
+  Factor f;
   SinglePrecisionFactor factor;
   factor.assign(f.view());
   const Eigen::VectorXd b = right_hand_side();
@@ -88,7 +89,7 @@ TEST(SinglePrecisionFactor, SolvesThePermutedSystemToSinglePrecision) {
 }
 
 TEST(SinglePrecisionFactor, SplitsTheTreeBelowTheSeparatorAndGivesTheSameResultOnAnyThreadCount) {
-  const Factor f;
+  Factor f;
   SinglePrecisionFactor factor;
   factor.assign(f.view());
   // The two leaves form the bins; the separator's 2 x 2 block (4 of the 27 entries) is the top.
@@ -122,8 +123,10 @@ TEST(SinglePrecisionFactor, RefusesASupernodeThatDoesNotStartWithItsColumns) {
   Factor f;
   f.rows[5] = 4;  // supernode 1 (columns 3-4) would start with row 4
   f.rows[6] = 3;
+  const std::vector<double> before = f.values;
   SinglePrecisionFactor factor;
   EXPECT_THROW(factor.assign(f.view()), std::invalid_argument);
+  EXPECT_EQ(f.values, before);  // refused before the conversion in place
 }
 
 }  // namespace
