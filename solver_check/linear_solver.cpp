@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <exception>
 
 namespace tissuemesh {
 
@@ -27,9 +29,6 @@ constexpr int kMaxIterations = 25;
 constexpr double kMinShift = 1e-8;
 constexpr double kMaxShift = 1e-2;
 constexpr double kShiftFactor = 100.0;
-/// A rung is skipped only when it is below the shift CG proved too small by more than this
-/// relative margin: p^T K p carries rounding errors, and a rung at the bound itself is tried.
-constexpr double kProvenShiftMargin = 1e-6;
 
 #ifdef TISSUEMESH_HAVE_CHOLMOD
 /// Eigen's CHOLMOD wrapper, with its factor readable (for the single-precision copy).
@@ -72,6 +71,7 @@ bool cholmod_available() {
 
 struct SparseSpdSolver::Impl {
   bool use_cholmod = false;
+  int threads = 1;  ///< for the single-precision preconditioner's solves
   /// The kept factorisation is of an earlier, unshifted K: the next solve's preconditioner. A
   /// factor of a shifted K is a poor one for the next K (measured: CG then needs more than
   /// kMaxIterations every time), so after it the next solve factorises straight away.
@@ -106,14 +106,20 @@ struct SparseSpdSolver::Impl {
   /// cholmod.solve() is not used again until the next factorisation.
   void keep_single_precision() {
 #ifdef TISSUEMESH_HAVE_CHOLMOD
-    if (use_cholmod && exact_factor && cholmod.factor_readable()) preconditioner.assign(cholmod.factor());
+    if (!use_cholmod || !exact_factor || !cholmod.factor_readable()) return;
+    try {
+      preconditioner.assign(cholmod.factor());
+    } catch (const std::exception&) {
+      // Refused (or out of memory) before touching the factor: CG keeps using it in double.
+      preconditioner.clear();
+    }
 #endif
   }
 
   /// CG's preconditioner: the kept factor, in single precision when there is a copy.
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
 #ifdef TISSUEMESH_HAVE_CHOLMOD
-    if (use_cholmod && !preconditioner.empty()) return preconditioner.solve(r, z);
+    if (use_cholmod && !preconditioner.empty()) return preconditioner.solve(r, z, threads);
 #endif
     z = apply_factor(r);
   }
@@ -158,7 +164,7 @@ struct SparseSpdSolver::Impl {
       }
       const double mean_diagonal = K.diagonal().cwiseAbs().mean();
       for (double sigma = sigma_start; sigma <= kMaxShift * (1.0 + 1e-9); sigma *= kShiftFactor) {
-        if (sigma * mean_diagonal < (1.0 - kProvenShiftMargin) * proven_shift) continue;
+        if (sigma * mean_diagonal < proven_shift) continue;
         cholmod.setShift(sigma * mean_diagonal);
         cholmod.factorize(K);
         if (cholmod.info() == Eigen::Success) {
@@ -191,7 +197,8 @@ struct SparseSpdSolver::Impl {
   /// Preconditioned conjugate gradients on K (lower triangle) from x = 0 until
   /// ||K x - b|| <= rtol ||b|| (Converged) or max_iterations (NotConverged). A direction p with
   /// p^T K p <= 0 proves K not positive definite: it stops there (NegativeCurvature), with
-  /// proven_shift = -p^T K p / p^T p (K + s I is not positive definite for any s below it).
+  /// proven_shift = -p^T K p / p^T p less its rounding error (K + s I is not positive definite for
+  /// any s below it).
   CgOutcome pcg(const SparseMatrix& K, const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol,
                 int max_iterations, int& iterations, double& proven_shift) {
     const auto A = K.selfadjointView<Eigen::Lower>();
@@ -207,7 +214,13 @@ struct SparseSpdSolver::Impl {
       const double pAp = p.dot(Ap);
       if (!std::isfinite(rz) || !std::isfinite(pAp)) return CgOutcome::NotConverged;
       if (!(pAp > 0.0)) {
-        proven_shift = -pAp / p.squaredNorm();
+        // Less the rounding error bound of p^T K p (n eps |p|^T |K| |p|), so a rung is skipped
+        // only when its failure is certain.
+        const Eigen::VectorXd abs_p = p.cwiseAbs();
+        const SparseMatrix abs_K = K.cwiseAbs();
+        const double rounding = static_cast<double>(K.rows()) * std::numeric_limits<double>::epsilon() *
+                                abs_p.dot(abs_K.selfadjointView<Eigen::Lower>() * abs_p);
+        proven_shift = std::max(0.0, (-pAp - rounding) / p.squaredNorm());
         return CgOutcome::NegativeCurvature;
       }
       const double alpha = rz / pAp;
@@ -226,7 +239,8 @@ struct SparseSpdSolver::Impl {
   }
 };
 
-SparseSpdSolver::SparseSpdSolver(LinearSolverKind kind) : impl_(std::make_unique<Impl>()) {
+SparseSpdSolver::SparseSpdSolver(LinearSolverKind kind, int threads) : impl_(std::make_unique<Impl>()) {
+  impl_->threads = std::max(1, threads);
   if (kind == LinearSolverKind::Cholmod && !cholmod_available())
     throw SolverError("linear solver CHOLMOD requested, but this build has no CHOLMOD (install libsuitesparse-dev "
                       "and rebuild)");

@@ -42,7 +42,8 @@ namespace tissuemesh {
 class SparseSpdSolver {
  public:
   /// Auto = Cholmod when available. Throws SolverError for Cholmod in a build without it.
-  explicit SparseSpdSolver(LinearSolverKind kind);
+  /// `threads`: for the preconditioner's triangular solves (CHOLMOD's BLAS is left as configured).
+  explicit SparseSpdSolver(LinearSolverKind kind, int threads = 1);
   ~SparseSpdSolver();
   SparseSpdSolver(const SparseSpdSolver&) = delete;
   SparseSpdSolver& operator=(const SparseSpdSolver&) = delete;

@@ -1,7 +1,5 @@
 #include "solver_check/single_precision_factor.h"
 
-#include <omp.h>
-
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -24,37 +22,51 @@ constexpr int kMaxOpened = 256;
 }  // namespace
 
 void SinglePrecisionFactor::assign(const SupernodalFactorView& f) {
-  n_ = f.n;
-  const int ns = f.nsuper;
-  super_.assign(f.super, f.super + ns + 1);
-  pi_.assign(f.pi, f.pi + ns + 1);
-  px_.assign(f.px, f.px + ns + 1);
-  rows_ = f.rows;
-  perm_.resize(n_);
-  for (int k = 0; k < n_; ++k) perm_[k] = f.perm ? f.perm[k] : k;
-  col_super_.assign(n_, -1);
-  std::size_t widest = 0;
-  for (int s = 0; s < ns; ++s) {
-    const int nscol = super_[s + 1] - super_[s], nsrow = pi_[s + 1] - pi_[s];
-    if (nscol <= 0 || nsrow < nscol || px_[s + 1] - px_[s] < static_cast<std::int64_t>(nsrow) * nscol)
-      throw std::invalid_argument("supernodal factor: supernode " + std::to_string(s) + " has an inconsistent block");
-    for (int j = 0; j < nscol; ++j) {
-      if (rows_[pi_[s] + j] != super_[s] + j)
-        throw std::invalid_argument("supernodal factor: supernode " + std::to_string(s) + " does not start with its columns");
-      col_super_[super_[s] + j] = s;
-    }
-    widest = std::max(widest, static_cast<std::size_t>(nsrow));
-  }
+  SinglePrecisionFactor next;
+  next.plan(f);  // every check and allocation; f is not touched
   // To single precision in place, in increasing order: float i (bytes 4i..4i+3) only overwrites
   // doubles before i, which were read already.
   float* converted = reinterpret_cast<float*>(f.values);
-  for (std::int64_t i = 0; i < px_[ns]; ++i) {
+  for (std::int64_t i = 0; i < next.px_.back(); ++i) {
     double v;
     std::memcpy(&v, f.values + i, sizeof v);
     const float w = static_cast<float>(v);
     std::memcpy(converted + i, &w, sizeof w);
   }
-  values_ = converted;
+  next.values_ = converted;
+  *this = std::move(next);
+}
+
+void SinglePrecisionFactor::plan(const SupernodalFactorView& f) {
+  auto refuse = [](const std::string& what) { throw std::invalid_argument("supernodal factor: " + what); };
+  const int ns = f.nsuper;
+  if (f.n <= 0 || ns <= 0 || f.super[0] != 0 || f.super[ns] != f.n || f.pi[0] != 0 || f.px[0] != 0)
+    refuse("the supernodes do not cover the columns 0.." + std::to_string(f.n - 1));
+  n_ = f.n;
+  super_.assign(f.super, f.super + ns + 1);
+  pi_.assign(f.pi, f.pi + ns + 1);
+  px_.assign(f.px, f.px + ns + 1);
+  rows_ = f.rows;
+  perm_.resize(n_);
+  std::vector<char> seen(n_, 0);
+  for (int k = 0; k < n_; ++k) {
+    perm_[k] = f.perm ? f.perm[k] : k;
+    if (perm_[k] < 0 || perm_[k] >= n_ || seen[perm_[k]]++) refuse("the permutation is not one of 0.." + std::to_string(n_ - 1));
+  }
+  col_super_.assign(n_, -1);
+  std::size_t widest = 0;
+  for (int s = 0; s < ns; ++s) {
+    const int nscol = super_[s + 1] - super_[s], nsrow = pi_[s + 1] - pi_[s];
+    if (nscol <= 0 || nsrow < nscol || px_[s + 1] - px_[s] < static_cast<std::int64_t>(nsrow) * nscol)
+      refuse("supernode " + std::to_string(s) + " has an inconsistent block");
+    for (int i = 0; i < nsrow; ++i) {
+      const int r = rows_[pi_[s] + i];
+      if (i < nscol ? r != super_[s] + i : r < super_[s + 1] || r >= n_)
+        refuse("supernode " + std::to_string(s) + " has row " + std::to_string(r) + " at position " + std::to_string(i));
+    }
+    for (int j = 0; j < nscol; ++j) col_super_[super_[s] + j] = s;
+    widest = std::max(widest, static_cast<std::size_t>(nsrow));
+  }
 
   // The elimination tree of the supernodes: a supernode's parent holds its first off-diagonal row.
   std::vector<int> parent(ns, -1), first(ns), count(ns, 1);
@@ -68,7 +80,7 @@ void SinglePrecisionFactor::assign(const SupernodalFactorView& f) {
     total += static_cast<double>(nsrow) * nscol;
     if (nsrow > nscol) parent[s] = col_super_[rows_[pi_[s] + nscol]];
     if (parent[s] >= 0) {
-      if (parent[s] <= s) throw std::invalid_argument("supernodal factor: the elimination tree is not ordered");
+      if (parent[s] <= s) refuse("the elimination tree is not ordered");
       children[parent[s]].push_back(s);
       work[parent[s]] += work[s];  // work[s] is complete: all of s's descendants come before s
       first[parent[s]] = std::min(first[parent[s]], first[s]);
@@ -168,11 +180,11 @@ void SinglePrecisionFactor::backward(int s, float* y, std::vector<float>& scratc
   block.topRows(nscol).triangularView<Eigen::Lower>().transpose().solveInPlace(own);
 }
 
-void SinglePrecisionFactor::solve(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+void SinglePrecisionFactor::solve(const Eigen::VectorXd& r, Eigen::VectorXd& z, int threads) {
   float* y = y_.data();
   for (int k = 0; k < n_; ++k) y[k] = static_cast<float>(r[perm_[k]]);
   const bool split = !bins_[0].empty() && !bins_[1].empty();
-  const int threads = split ? std::min(2, omp_get_max_threads()) : 1;
+  threads = split ? std::clamp(threads, 1, 2) : 1;
   // L y = P r: the bins' subtrees (two threads), their updates of top rows added in bin order, then the top.
   if (split) {
 #pragma omp parallel for num_threads(threads) schedule(static, 1)

@@ -53,14 +53,17 @@ class SinglePrecisionFactor {
   /// Converts the factor's values to single precision in place (the header comment) and plans the
   /// two-thread split. `factor.values` and `factor.rows` must stay as they are while this object
   /// is used (until clear() or the next assign()); the other arrays are copied. Throws
-  /// std::invalid_argument, before changing anything, when the view is inconsistent (a supernode
-  /// whose first rows are not its own columns).
+  /// std::invalid_argument when the view is inconsistent (supernodes not covering the columns in
+  /// order, a block not starting with its own columns, a row out of range, an unordered tree, a
+  /// permutation that is not one), or std::bad_alloc; either way before changing the values or
+  /// this object.
   void assign(const SupernodalFactorView& factor);
   bool empty() const { return n_ == 0; }
   /// Releases the copy and its work vectors (empty() afterwards).
   void clear() { *this = SinglePrecisionFactor(); }
-  /// z = (P^T L L^T P)^-1 r, computed in single precision.
-  void solve(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  /// z = (P^T L L^T P)^-1 r, computed in single precision, on `threads` threads (1 or 2 are used;
+  /// the result is the same for any count).
+  void solve(const Eigen::VectorXd& r, Eigen::VectorXd& z, int threads);
   /// Share of the factor's entries in the top part (solved by one thread), in [0, 1].
   double top_share() const { return top_share_; }
 
@@ -68,6 +71,8 @@ class SinglePrecisionFactor {
   struct Subtree {
     int first, last;  ///< supernodes first .. last (postorder: a subtree is a contiguous range)
   };
+  /// assign() without the conversion: every check, the tree split and the work vectors.
+  void plan(const SupernodalFactorView& factor);
   void forward(int s, float* y, float* outside, int first, int last, std::vector<float>& scratch) const;
   void backward(int s, float* y, std::vector<float>& scratch) const;
 

@@ -282,7 +282,7 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   const AnalysisSettings& s = model.analysis;
   ReducedAssembly assembly(model.order, model.elements, problem.geometry, problem.law, dofs, options.threads,
                            problem.nodal.get());
-  SparseSpdSolver linear(options.linear_solver);
+  SparseSpdSolver linear(options.linear_solver, assembly.threads());
   Context ctx{problem, dofs, s, assembly, linear};
 
   SolveResult result;
