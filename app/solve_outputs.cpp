@@ -62,7 +62,7 @@ SolveResult run_solver(const Model& model, int threads, Progress& progress) {
   SolveResult r = solve_static(model, options);
   stage.note(std::to_string(r.free_dofs) + " free dofs, " + r.linear_solver + " (" +
              std::to_string(r.factorisations) + " factorisations, " + std::to_string(r.linear_iterations) +
-             " preconditioned CG iterations), " + std::to_string(r.threads) +
+             " CG iterations preconditioned by " + r.cg_preconditioner + "), " + std::to_string(r.threads) +
              (r.threads == 1 ? " thread: " : " threads: ") + r.message);
   return r;
 }
@@ -109,6 +109,7 @@ nlohmann::json solver_json(const SolveResult& r) {
           {"shifted_factorisations", r.shifted_factorisations},
           {"failed_factorisations", r.failed_factorisations},
           {"preconditioned_cg_iterations", r.linear_iterations},
+          {"cg_preconditioner", r.cg_preconditioner},
           {"assembly_seconds", r.assembly_seconds},
           {"linear_solve_seconds", r.linear_solve_seconds},
           {"factorisation_seconds", r.factorisation_seconds},

@@ -72,6 +72,7 @@ bool cholmod_available() {
 struct SparseSpdSolver::Impl {
   bool use_cholmod = false;
   int threads = 1;  ///< for the single-precision preconditioner's solves
+  std::string preconditioner_used = "none";  ///< SparseSpdSolver::preconditioner()
   /// The kept factorisation is of an earlier, unshifted K: the next solve's preconditioner. A
   /// factor of a shifted K is a poor one for the next K (measured: CG then needs more than
   /// kMaxIterations every time), so after it the next solve factorises straight away.
@@ -119,8 +120,13 @@ struct SparseSpdSolver::Impl {
   /// CG's preconditioner: the kept factor, in single precision when there is a copy.
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
 #ifdef TISSUEMESH_HAVE_CHOLMOD
-    if (use_cholmod && !preconditioner.empty()) return preconditioner.solve(r, z, threads);
+    if (use_cholmod && !preconditioner.empty()) {
+      preconditioner_used = "the kept factorisation in single precision, " + std::to_string(threads) +
+                            (threads == 1 ? " thread" : " threads");
+      return preconditioner.solve(r, z, threads);
+    }
 #endif
+    preconditioner_used = "the kept factorisation";
     z = apply_factor(r);
   }
 
@@ -251,6 +257,8 @@ SparseSpdSolver::~SparseSpdSolver() = default;
 
 double SparseSpdSolver::factor_entries() const { return impl_->factor_entries; }
 double SparseSpdSolver::factor_flops() const { return impl_->factor_flops; }
+
+std::string SparseSpdSolver::preconditioner() const { return impl_->preconditioner_used; }
 
 std::string SparseSpdSolver::name() const {
   return impl_->use_cholmod ? "CHOLMOD supernodal LLT" : "Eigen SimplicialLDLT";

@@ -59,6 +59,9 @@ class SparseSpdSolver {
   /// not counted in factorisations(), but in factorisation_seconds().
   int failed_factorisations() const { return failed_; }
   int iterations() const { return iterations_; }
+  /// What CG was preconditioned with, e.g. "the kept factorisation in single precision, 2 threads"
+  /// (whichever was used last; "none" before any CG iteration).
+  std::string preconditioner() const;
   /// Wall time spent in numeric factorisations (including failed, unshifted attempts).
   double factorisation_seconds() const { return factorisation_seconds_; }
   /// Entries of the triangular factor L, diagonal included (what a factorisation stores and

@@ -365,6 +365,7 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   result.shifted_factorisations = linear.shifted_factorisations();
   result.failed_factorisations = linear.failed_factorisations();
   result.linear_iterations = linear.iterations();
+  result.cg_preconditioner = linear.preconditioner();
   result.factorisation_seconds = linear.factorisation_seconds();
   result.factor_entries = linear.factor_entries();
   result.factor_flops = linear.factor_flops();

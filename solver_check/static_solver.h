@@ -136,6 +136,7 @@ struct SolveResult {
   int shifted_factorisations = 0; ///< of them, with a diagonal shift (tangent not positive definite)
   int failed_factorisations = 0;  ///< attempts given up (not positive definite), not in the above
   int linear_iterations = 0;      ///< preconditioned CG iterations on kept factorisations
+  std::string cg_preconditioner;  ///< SparseSpdSolver::preconditioner()
   double assembly_seconds = 0.0;  ///< wall time in element evaluation and assembly
   double linear_solve_seconds = 0.0;  ///< wall time in factorisation and solves
   double factorisation_seconds = 0.0; ///< of it, in numeric factorisations

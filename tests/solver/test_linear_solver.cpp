@@ -55,6 +55,7 @@ TEST_F(CholmodSolver, FactorisesOnceAndThenIteratesToTheRequestedResidual) {
   EXPECT_LT(relative_residual(K1, x, b), kRelativeRoundoff);  // the direct solve
   EXPECT_EQ(solver.factorisations(), 1);
   EXPECT_EQ(solver.iterations(), 0);
+  EXPECT_EQ(solver.preconditioner(), "none");
   // A nearby K: CG on the kept factorisation, to the requested residual and no further.
   const SparseMatrix K2 = matrix(3.3, 1.1);
   const double rtol = 1e-6;
@@ -62,6 +63,7 @@ TEST_F(CholmodSolver, FactorisesOnceAndThenIteratesToTheRequestedResidual) {
   EXPECT_LE(relative_residual(K2, x, b), rtol);
   EXPECT_EQ(solver.factorisations(), 1);
   EXPECT_GT(solver.iterations(), 0);
+  EXPECT_EQ(solver.preconditioner(), "the kept factorisation in single precision, 1 thread");
   EXPECT_EQ(solver.shifted_factorisations(), 0);
   EXPECT_EQ(solver.failed_factorisations(), 0);
 }
