@@ -130,6 +130,14 @@ TEST(SinglePrecisionFactor, OpensASubtreeWhenThatEvensTheBinsAtLowerCost) {
   expect_solves(std::move(f), 6.0);
 }
 
+TEST(SinglePrecisionFactor, ATreeNotInPostorderIsSolvedByOneThread) {
+  // Columns 0 and 2 under 3, column 1 under 4, both under 5: the subtree of 3 is {0, 2, 3}, not a
+  // contiguous range, so the bins (ranges of supernodes) cannot hold it: no split.
+  const Eigen::MatrixXd B = coupled(6, {{3, 0}, {4, 1}, {3, 2}, {5, 3}, {5, 4}});
+  const Factor f(B, {0, 1, 2, 3, 4, 5, 6}, {2, 5, 0, 4, 1, 3});
+  expect_solves(f, f.entries());
+}
+
 TEST(SinglePrecisionFactor, ATreeWithoutBranchesIsSolvedByOneThread) {
   // One dense supernode: nothing to split, all of it is the top.
   const Eigen::MatrixXd B = coupled(7, {{1, 0}, {6, 2}, {5, 3}});
