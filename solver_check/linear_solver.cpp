@@ -31,7 +31,7 @@ constexpr double kMaxShift = 1e-2;
 constexpr double kShiftFactor = 100.0;
 
 #ifdef TISSUEMESH_HAVE_CHOLMOD
-/// Eigen's CHOLMOD wrapper, with its factor readable (for the single-precision copy).
+/// Eigen's CHOLMOD wrapper, with its factor readable (for the single-precision preconditioner).
 class CholmodLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> {
  public:
   /// The supernodal LL' factor of the last successful factorize() (CHOLMOD's int layout).
@@ -72,7 +72,8 @@ bool cholmod_available() {
 struct SparseSpdSolver::Impl {
   bool use_cholmod = false;
   int threads = 1;  ///< for the single-precision preconditioner's solves
-  std::string preconditioner_used = "none";  ///< SparseSpdSolver::preconditioner()
+  /// What precondition() applied last (SparseSpdSolver::preconditioner()).
+  enum class Applied { None, Double, Single } applied = Applied::None;
   /// The kept factorisation is of an earlier, unshifted K: the next solve's preconditioner. A
   /// factor of a shifted K is a poor one for the next K (measured: CG then needs more than
   /// kMaxIterations every time), so after it the next solve factorises straight away.
@@ -117,16 +118,15 @@ struct SparseSpdSolver::Impl {
 #endif
   }
 
-  /// CG's preconditioner: the kept factor, in single precision when there is a copy.
+  /// CG's preconditioner: the kept factor, in single precision when it was converted.
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
 #ifdef TISSUEMESH_HAVE_CHOLMOD
     if (use_cholmod && !preconditioner.empty()) {
-      preconditioner_used = "the kept factorisation in single precision, " + std::to_string(threads) +
-                            (threads == 1 ? " thread" : " threads");
+      applied = Applied::Single;
       return preconditioner.solve(r, z, threads);
     }
 #endif
-    preconditioner_used = "the kept factorisation";
+    applied = Applied::Double;
     z = apply_factor(r);
   }
 
@@ -140,8 +140,6 @@ struct SparseSpdSolver::Impl {
     exact_factor = false;
 #ifdef TISSUEMESH_HAVE_CHOLMOD
     preconditioner.clear();  // its values are about to be overwritten
-#endif
-#ifdef TISSUEMESH_HAVE_CHOLMOD
     if (use_cholmod) {
       if (!analysed) {
         cholmod_common& c = cholmod.cholmod();
@@ -258,7 +256,18 @@ SparseSpdSolver::~SparseSpdSolver() = default;
 double SparseSpdSolver::factor_entries() const { return impl_->factor_entries; }
 double SparseSpdSolver::factor_flops() const { return impl_->factor_flops; }
 
-std::string SparseSpdSolver::preconditioner() const { return impl_->preconditioner_used; }
+std::string SparseSpdSolver::preconditioner() const {
+  switch (impl_->applied) {
+    case Impl::Applied::Single:
+      return "the kept factorisation in single precision, " + std::to_string(impl_->threads) +
+             (impl_->threads == 1 ? " thread" : " threads");
+    case Impl::Applied::Double:
+      return "the kept factorisation";
+    case Impl::Applied::None:
+      break;
+  }
+  return "none";
+}
 
 std::string SparseSpdSolver::name() const {
   return impl_->use_cholmod ? "CHOLMOD supernodal LLT" : "Eigen SimplicialLDLT";

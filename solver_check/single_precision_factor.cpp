@@ -53,7 +53,7 @@ void SinglePrecisionFactor::plan(const SupernodalFactorView& f) {
     perm_[k] = f.perm ? f.perm[k] : k;
     if (perm_[k] < 0 || perm_[k] >= n_ || seen[perm_[k]]++) refuse("the permutation is not one of 0.." + std::to_string(n_ - 1));
   }
-  col_super_.assign(n_, -1);
+  std::vector<int> col_super(n_, -1);  // the supernode of each column
   std::size_t widest = 0;
   for (int s = 0; s < ns; ++s) {
     const int nscol = super_[s + 1] - super_[s], nsrow = pi_[s + 1] - pi_[s];
@@ -64,7 +64,7 @@ void SinglePrecisionFactor::plan(const SupernodalFactorView& f) {
       if (i < nscol ? r != super_[s] + i : r < super_[s + 1] || r >= n_)
         refuse("supernode " + std::to_string(s) + " has row " + std::to_string(r) + " at position " + std::to_string(i));
     }
-    for (int j = 0; j < nscol; ++j) col_super_[super_[s] + j] = s;
+    for (int j = 0; j < nscol; ++j) col_super[super_[s] + j] = s;
     widest = std::max(widest, static_cast<std::size_t>(nsrow));
   }
 
@@ -78,7 +78,7 @@ void SinglePrecisionFactor::plan(const SupernodalFactorView& f) {
     const int nscol = super_[s + 1] - super_[s], nsrow = pi_[s + 1] - pi_[s];
     work[s] += static_cast<double>(nsrow) * nscol;
     total += static_cast<double>(nsrow) * nscol;
-    if (nsrow > nscol) parent[s] = col_super_[rows_[pi_[s] + nscol]];
+    if (nsrow > nscol) parent[s] = col_super[rows_[pi_[s] + nscol]];
     if (parent[s] >= 0) {
       if (parent[s] <= s) refuse("the elimination tree is not ordered");
       children[parent[s]].push_back(s);

@@ -1,5 +1,5 @@
-// SinglePrecisionFactor: a single-precision copy of a supernodal Cholesky factor and its two
-// triangular solves, split over two threads: the preconditioner of the built-in solver's
+// SinglePrecisionFactor: a supernodal Cholesky factor converted to single precision in place, and
+// its two triangular solves, split over two threads: the preconditioner of the built-in solver's
 // conjugate gradients (solver_check/linear_solver.h).
 //
 // Why: on the 60K-tet benchmark model each CG iteration applies the kept factorisation once (a
@@ -59,7 +59,7 @@ class SinglePrecisionFactor {
   /// this object.
   void assign(const SupernodalFactorView& factor);
   bool empty() const { return n_ == 0; }
-  /// Releases the copy and its work vectors (empty() afterwards).
+  /// Forgets the factor (its values stay converted) and releases the work vectors (empty() afterwards).
   void clear() { *this = SinglePrecisionFactor(); }
   /// z = (P^T L L^T P)^-1 r, computed in single precision, on `threads` threads (1 or 2 are used;
   /// the result is the same for any count).
@@ -77,7 +77,7 @@ class SinglePrecisionFactor {
   void backward(int s, float* y, std::vector<float>& scratch) const;
 
   int n_ = 0;
-  std::vector<int> super_, pi_, col_super_;
+  std::vector<int> super_, pi_;
   const int* rows_ = nullptr;      ///< borrowed
   const float* values_ = nullptr;  ///< borrowed: the factor's array, converted
   std::vector<std::int64_t> px_;
