@@ -65,19 +65,33 @@ SurfaceProjection::SurfaceProjection(const TriSurface& reference)
     t.patch_triangles[patches_.patch_of_triangle[i]].push_back(tri);
     t.all_triangles.push_back(tri);
   }
-  for (const std::vector<Triangle>& tris : t.patch_triangles) {
-    t.patch.push_back(std::make_unique<TriangleTree>(tris.begin(), tris.end()));
-    t.patch.back()->accelerate_distance_queries();
-  }
-  t.all = std::make_unique<TriangleTree>(t.all_triangles.begin(), t.all_triangles.end());
-  t.all->accelerate_distance_queries();
   t.curve_segments.resize(reference.junctions.size());
   for (std::size_t c = 0; c < reference.junctions.size(); ++c) {
     const std::vector<int>& line = reference.junctions[c];
     for (std::size_t i = 0; i + 1 < line.size(); ++i)
       t.curve_segments[c].emplace_back(point(reference.points[line[i]]), point(reference.points[line[i + 1]]));
-    t.curve.push_back(std::make_unique<SegmentTree>(t.curve_segments[c].begin(), t.curve_segments[c].end()));
-    t.curve.back()->accelerate_distance_queries();
+  }
+  // The whole surface's tree holds as many triangles as all patch trees together, and no tree
+  // depends on another: it is built on one thread while the patch and curve trees are built on
+  // the other (each tree is the same whichever thread builds it).
+#pragma omp parallel sections num_threads(2)
+  {
+#pragma omp section
+    {
+      t.all = std::make_unique<TriangleTree>(t.all_triangles.begin(), t.all_triangles.end());
+      t.all->accelerate_distance_queries();
+    }
+#pragma omp section
+    {
+      for (const std::vector<Triangle>& tris : t.patch_triangles) {
+        t.patch.push_back(std::make_unique<TriangleTree>(tris.begin(), tris.end()));
+        t.patch.back()->accelerate_distance_queries();
+      }
+      for (const std::vector<Segment>& segments : t.curve_segments) {
+        t.curve.push_back(std::make_unique<SegmentTree>(segments.begin(), segments.end()));
+        t.curve.back()->accelerate_distance_queries();
+      }
+    }
   }
 }
 
