@@ -61,8 +61,7 @@ RemeshComplex::RemeshComplex(const TriSurface& in, const SurfaceProjection& proj
     : proj_(projection),
       size_(options.relative_size),
       cap_(kCapFactor, kCapGradation),
-      max_deviation_(options.max_deviation_mm),
-      parallel_(options.parallel) {
+      max_deviation_(options.max_deviation_mm) {
   x_ = in.points;
   reference_ = in.points;
   represents_.resize(x_.size());
@@ -448,7 +447,18 @@ bool RemeshComplex::collapse_allowed(int a, int b, const std::vector<int>& ts, c
   return common.size() == ts.size();
 }
 
-bool RemeshComplex::collapse_keeps_shape(int a, int b, const std::vector<int>& ts) const {
+bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
+  std::vector<int> ts;
+  edge_triangles(a, b, ts);
+  if (ts.empty()) return false;
+  std::vector<int> na;
+  neighbours(a, na);
+  // No edge of the result too long: the test that refuses most attempts (at 21K 955K of 1.2M),
+  // so it comes first. Every test here is free of side effects: their order changes no outcome.
+  for (int w : na)
+    if (w != b && (x_[b] - x_[w]).norm() > max_relative * h(0.5 * (x_[b] + x_[w]))) return false;
+  if (!collapse_allowed(a, b, ts, na)) return false;
+  if (!move_keeps_normals(a, x_[b], vt_[a], ts)) return false;
   // Approximation: every input vertex a or b stands for stays within max_deviation of the new
   // triangles around b (a removal is checked against what remains, so errors cannot pile up).
   if (deviation() > 0.0) {
@@ -481,10 +491,6 @@ bool RemeshComplex::collapse_keeps_shape(int a, int b, const std::vector<int>& t
     if (n.dot(n_ref) < kMinNormalTurnCos) return false;
     if (deviation() > 0.0 && (on - g).norm() > deviation()) return false;
   }
-  return true;
-}
-
-bool RemeshComplex::collapse_stays_valid(int a, int b, const std::vector<int>& ts) {
   // A triangle of a that would coincide with one of b (a pocket between patches closing up).
   for (int t : vt_[a]) {
     if (std::find(ts.begin(), ts.end(), t) != ts.end()) continue;
@@ -495,35 +501,7 @@ bool RemeshComplex::collapse_stays_valid(int a, int b, const std::vector<int>& t
     }
   }
   collect_moved(vt_[a], ts, a, x_[b], b);
-  return !would_intersect(vt_[a]);
-}
-
-bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
-  std::vector<int> ts;
-  edge_triangles(a, b, ts);
-  if (ts.empty()) return false;
-  std::vector<int> na;
-  neighbours(a, na);
-  // No edge of the result too long: the test that refuses most attempts (at 21K 955K of 1.2M),
-  // so it comes first. Every test here is free of side effects: their order changes no outcome.
-  for (int w : na)
-    if (w != b && (x_[b] - x_[w]).norm() > max_relative * h(0.5 * (x_[b] + x_[w]))) return false;
-  if (!collapse_allowed(a, b, ts, na)) return false;
-  if (!move_keeps_normals(a, x_[b], vt_[a], ts)) return false;
-  // The remaining checks only read the mesh, in two groups: the shape checks (approximation and
-  // fidelity, mostly projections onto the reference) and the validity checks (pocket and
-  // intersection guard; the guard's scratch is used by nothing else). With parallel_ they run at
-  // once on two threads, with the outcome of running them one after the other: the collapse
-  // happens when both pass.
-  bool shape = true, valid = true;
-#pragma omp parallel sections num_threads(2) if (parallel_)
-  {
-#pragma omp section
-    shape = collapse_keeps_shape(a, b, ts);
-#pragma omp section
-    valid = collapse_stays_valid(a, b, ts);
-  }
-  if (!shape || !valid) return false;
+  if (would_intersect(vt_[a])) return false;
   // Apply.
   for (int t : ts) {
     tri_alive_[t] = 0;

@@ -45,9 +45,7 @@
 // instead of becoming slivers. Edges with a surface vertex are not entered: that vertex can still
 // move, and a short edge held by a thin sheet, once entered, refines the sheet into more short
 // edges (measured on the 2.1K phantom: down to 0.02 mm edges and a 0.6 degree minimum angle).
-// Deterministic: every sweep visits triangles and vertices in index order. The only parallelism
-// is inside one collapse, whose two groups of read-only checks may run on two threads at once
-// (RemeshOptions::parallel); the result is the same either way.
+// Deterministic: every sweep visits triangles and vertices in index order. Not parallel.
 #pragma once
 
 #include "core/tri_surface.h"
@@ -71,8 +69,7 @@ namespace tissuemesh {
 class RemeshComplex {
  public:
   /// `in` is the reference surface (valid, closed per tissue); `projection` is built on it and
-  /// must outlive this object. Takes options.relative_size, options.max_deviation_mm and
-  /// options.parallel.
+  /// must outlive this object. Takes options.relative_size and options.max_deviation_mm.
   RemeshComplex(const TriSurface& in, const SurfaceProjection& projection, const RemeshOptions& options);
 
   double L = 1.0;  ///< edge length where s = 1, mm
@@ -253,12 +250,6 @@ class RemeshComplex {
   bool collapse_allowed(int a, int b, const std::vector<int>& ts, const std::vector<int>& na) const;
   /// Collapses a into b if allowed and geometrically sound; `max_relative` bounds the new edges.
   bool try_collapse(int a, int b, double max_relative);
-  /// try_collapse's shape checks (the approximation bound for the input vertices a and b stand
-  /// for; each changed triangle's distance and facing to its patch). Reads only.
-  bool collapse_keeps_shape(int a, int b, const std::vector<int>& ts) const;
-  /// try_collapse's validity checks (no triangle of a coinciding with one of b; no intersection).
-  /// Changes only the intersection guard's scratch, so it may run alongside collapse_keeps_shape.
-  bool collapse_stays_valid(int a, int b, const std::vector<int>& ts);
   /// Removes the lower-ranked vertex of (a, b) (surface before curve, then the higher index), or
   /// the other when that is refused.
   bool collapse_either(int a, int b, double max_relative);
@@ -269,7 +260,6 @@ class RemeshComplex {
   GradedSizeCap cap_;
   double max_deviation_ = 0.0;
   double slack_ = 1.0;  ///< deviation() multiplier, raised by match_count when stuck
-  bool parallel_ = true;  ///< RemeshOptions::parallel
   std::vector<Vector3d> reference_;             ///< the input vertices
   std::vector<std::vector<int>> represents_;    ///< per vertex: input vertices collapsed into it
   TriangleGrid grid_;

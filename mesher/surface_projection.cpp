@@ -1,6 +1,7 @@
 #include "mesher/surface_projection.h"
 
 #include "core/errors.h"
+#include "mesher/run_at_once.h"
 
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -72,27 +73,24 @@ SurfaceProjection::SurfaceProjection(const TriSurface& reference)
       t.curve_segments[c].emplace_back(point(reference.points[line[i]]), point(reference.points[line[i + 1]]));
   }
   // The whole surface's tree holds as many triangles as all patch trees together, and no tree
-  // depends on another: it is built on one thread while the patch and curve trees are built on
-  // the other (each tree is the same whichever thread builds it).
-#pragma omp parallel sections num_threads(2)
-  {
-#pragma omp section
-    {
-      t.all = std::make_unique<TriangleTree>(t.all_triangles.begin(), t.all_triangles.end());
-      t.all->accelerate_distance_queries();
-    }
-#pragma omp section
-    {
-      for (const std::vector<Triangle>& tris : t.patch_triangles) {
-        t.patch.push_back(std::make_unique<TriangleTree>(tris.begin(), tris.end()));
-        t.patch.back()->accelerate_distance_queries();
-      }
-      for (const std::vector<Segment>& segments : t.curve_segments) {
-        t.curve.push_back(std::make_unique<SegmentTree>(segments.begin(), segments.end()));
-        t.curve.back()->accelerate_distance_queries();
-      }
-    }
-  }
+  // depends on another: its primitives and nearest-point search tree (accelerate_distance_queries)
+  // are built on one thread while the patch and curve trees' are built on the other (each is the
+  // same whichever thread builds it). CGAL builds a tree's box hierarchy at its first query.
+  run_at_once(
+      [&] {
+        t.all = std::make_unique<TriangleTree>(t.all_triangles.begin(), t.all_triangles.end());
+        t.all->accelerate_distance_queries();
+      },
+      [&] {
+        for (const std::vector<Triangle>& tris : t.patch_triangles) {
+          t.patch.push_back(std::make_unique<TriangleTree>(tris.begin(), tris.end()));
+          t.patch.back()->accelerate_distance_queries();
+          }
+        for (const std::vector<Segment>& segments : t.curve_segments) {
+          t.curve.push_back(std::make_unique<SegmentTree>(segments.begin(), segments.end()));
+          t.curve.back()->accelerate_distance_queries();
+          }
+      });
 }
 
 SurfaceProjection::~SurfaceProjection() = default;

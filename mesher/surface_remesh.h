@@ -58,10 +58,6 @@ struct RemeshOptions {
   /// Try the repair of triangles left under 30 degrees (header comment); false returns the
   /// polished result as is (what a discarded repair returns too).
   bool repair = true;
-  /// Run the two groups of read-only checks of each edge collapse (shape: projections onto the
-  /// reference; validity: the intersection guard) on two threads at once. The result is the same
-  /// either way; at 21K the collapse sweeps take ~16 % less time (bench/RESULTS.md).
-  bool parallel = true;
 };
 
 struct RemeshResult {

@@ -197,27 +197,6 @@ TEST(SurfaceRemesh, IsDeterministic) {
   EXPECT_EQ(a.surface.points, b.surface.points);
 }
 
-TEST(SurfaceRemesh, CollapseChecksOnTwoThreadsGiveTheSerialResult) {
-  // RemeshOptions::parallel runs each collapse's shape and validity checks at once; both only read
-  // the mesh (the guard's scratch is its own), so the remeshed surface must be the serial one, bit
-  // for bit. The coarse phantom: thousands of collapses, refused by either group.
-  const CoarsePhantom& p = coarse_phantom();
-  RemeshOptions options;
-  options.target_vertices = 1500;
-  options.max_deviation_mm = p.max_deviation_mm;
-  Progress progress;
-  options.parallel = false;
-  const RemeshResult serial = remesh_surface(p.surface, p.on_surface, options, progress);
-  options.parallel = true;
-  const RemeshResult parallel = remesh_surface(p.surface, p.on_surface, options, progress);
-  EXPECT_GT(serial.collapses, 1000u);
-  EXPECT_EQ(parallel.collapses, serial.collapses);
-  EXPECT_EQ(parallel.surface.points, serial.surface.points);
-  EXPECT_EQ(parallel.surface.triangles, serial.surface.triangles);
-  EXPECT_EQ(parallel.surface.labels, serial.surface.labels);
-  EXPECT_EQ(parallel.surface.junctions, serial.surface.junctions);
-}
-
 TEST(SurfaceRemesh, RefusesABudgetBelowTheCorners) {
   const LabelImage img = three_boxes();
   const TriSurface input = extract(img, 3).surface;

@@ -1,0 +1,44 @@
+// run_at_once: two independent, coarse pieces of work on two OpenMP threads (SurfaceProjection's
+// trees). `first` and `second` must not write anything the other reads or writes; then the outcome
+// is the one of calling them one after the other. An exception never leaves the OpenMP region
+// (that would call std::terminate): each is caught on its thread and rethrown on the caller's after
+// both finished, `first`'s when both threw, so callers see the errors serial code would raise.
+// Include it only from translation units compiled with OpenMP (without, the two run one after the
+// other).
+//
+// Not for fine-grained work: splitting every few microseconds (a remesher collapse's checks, tried
+// in 31ce921) gained 4-22 % on an idle machine but was several times slower while other processes
+// kept both cores busy (bench/RESULTS.md), since each split then waits for the scheduler.
+#pragma once
+
+#include <exception>
+
+namespace tissuemesh {
+
+template <class First, class Second>
+void run_at_once(First&& first, Second&& second) {
+  std::exception_ptr first_error, second_error;
+#pragma omp parallel sections num_threads(2)
+  {
+#pragma omp section
+    {
+      try {
+        first();
+      } catch (...) {
+        first_error = std::current_exception();
+      }
+    }
+#pragma omp section
+    {
+      try {
+        second();
+      } catch (...) {
+        second_error = std::current_exception();
+      }
+    }
+  }
+  if (first_error) std::rethrow_exception(first_error);
+  if (second_error) std::rethrow_exception(second_error);
+}
+
+}  // namespace tissuemesh
