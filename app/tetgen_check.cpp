@@ -93,6 +93,23 @@ nlohmann::json forced_json(const ForcedRadiusEdge& f, const TriSurface& s, const
   return j;
 }
 
+// How a mesh's tets above the radius-edge bound split into forced and unforced ones.
+nlohmann::json account_json(const RadiusEdgeAccount& a) {
+  return {{"above", a.above},
+          {"forced_by_input_triangle", a.forced},
+          {"not_forced", a.unforced},
+          {"max_ratio_not_forced", a.max_unforced_ratio},
+          {"not_forced_by_surface_nodes", a.unforced_by_surface_nodes}};
+}
+
+// "a/b/c/d/e": the unforced tets with 0, 1, ... 4 nodes on the surface.
+std::string surface_nodes_text(const RadiusEdgeAccount& a) {
+  std::string text;
+  for (std::size_t k = 0; k < a.unforced_by_surface_nodes.size(); ++k)
+    text += (k ? "/" : "") + std::to_string(a.unforced_by_surface_nodes[k]);
+  return text;
+}
+
 // The stdout lines of the forced ratio (mesher/forced_radius_edge.h).
 std::string forced_text(const ForcedRadiusEdge& f, const TriSurface& s, const TetMesh& mesh, const std::string& bound) {
   if (f.triangle < 0) return "";
@@ -140,14 +157,14 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   ConformityReport c_mesh, c_tg;
   std::map<std::pair<int, int>, double> a_mesh, a_tg;
   const double bound = config.mesh.tetgen.radius_edge_ratio;
-  std::size_t above_mesh = 0, above_tg = 0;
+  RadiusEdgeAccount above_mesh, above_tg;
   ForcedRadiusEdge forced;
   {
     auto stage = progress.stage("compare the meshes");
     q_mesh = compute_quality(mesh);
     q_tg = compute_quality(tg.mesh);
-    above_mesh = count_radius_edge_above(mesh, bound);
-    above_tg = count_radius_edge_above(tg.mesh, bound);
+    above_mesh = account_radius_edge_above(mesh, surface, bound);
+    above_tg = account_radius_edge_above(tg.mesh, surface, bound);
     forced = forced_radius_edge_ratio(surface, bound);
     c_mesh = check_conformity(mesh);
     c_tg = check_conformity(tg.mesh);
@@ -184,7 +201,12 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   text << "  radius-edge ratio (circumradius / shortest edge, TetGen's -q measure; tetgen.radius_edge_ratio "
        << bound_text << "): max " << format_double("%.3f", q_mesh.total.max_radius_edge_ratio) << " MESH, "
        << format_double("%.3f", q_tg.total.max_radius_edge_ratio) << " TetGen; tets above " << bound_text << ": "
-       << above_mesh << " MESH, " << above_tg << " TetGen\n";
+       << above_mesh.above << " MESH, " << above_tg.above << " TetGen\n"
+       << "  of them on an input triangle forcing more than " << bound_text << " (see below): " << above_mesh.forced
+       << " MESH, " << above_tg.forced << " TetGen; the others (not forced by the input): " << above_mesh.unforced
+       << " MESH (max " << format_double("%.3f", above_mesh.max_unforced_ratio) << "), " << above_tg.unforced
+       << " TetGen (max " << format_double("%.3f", above_tg.max_unforced_ratio) << "); of TetGen's, with 0-4 nodes on "
+       << "the input surface: " << surface_nodes_text(above_tg) << "\n";
   text << forced_text(forced, surface, mesh, bound_text);
 
   nlohmann::json interfaces = nlohmann::json::array();
@@ -220,8 +242,9 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
                       {"steiner_points", tg.steiner_points},
                       {"input_triangles", surface.triangles.size()},
                       {"radius_edge_ratio_bound", bound},
-                      {"tets_above_radius_edge_bound", above_tg},
-                      {"mesh_tets_above_radius_edge_bound", above_mesh},
+                      {"tets_above_radius_edge_bound", above_tg.above},
+                      {"mesh_tets_above_radius_edge_bound", above_mesh.above},
+                      {"tets_above_radius_edge_bound_account", {{"tetgen", account_json(above_tg)}, {"mesh", account_json(above_mesh)}}},
                       {"radius_edge_ratio_forced_by_input", forced_json(forced, surface, mesh)},
                       {"mesh", out.final_path("mesh_tetgen.vtu").string()}};
   record["tissues"] = tissues;

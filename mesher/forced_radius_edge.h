@@ -11,11 +11,14 @@
 // at least the largest 1 / (2 sin theta) over the triangles. A mesher that may split boundary
 // triangles (TetGen without -Y) is not bound by it.
 //
-// Deterministic; O(triangles).
+// Deterministic; O(triangles). account_radius_edge_above() uses the bound to tell, for a given
+// mesh, the tets above a ratio that its surface forces from those its mesher could have improved.
 #pragma once
 
+#include "core/tet_mesh.h"
 #include "core/tri_surface.h"
 
+#include <array>
 #include <cstddef>
 #include <limits>
 
@@ -38,5 +41,33 @@ struct ForcedRadiusEdge {
 /// above `bound` (e.g. tetgen.radius_edge_ratio). Throws InputError when the surface is invalid
 /// (TriSurface::validate).
 ForcedRadiusEdge forced_radius_edge_ratio(const TriSurface& surface, double bound);
+
+/// The tets of a mesh above a radius-edge bound, split by the cause the header comment proves:
+/// a tet with a face that is a surface triangle forcing more than the bound cannot meet it in any
+/// mesh keeping that triangle (forced); any other tet could (unforced: the mesher's own doing).
+struct RadiusEdgeAccount {
+  /// Tets whose TetShape::radius_edge_ratio exceeds the bound, flat tets included
+  /// (TissueQuality::tets_radius_edge_above_2 is this count at 2).
+  std::size_t above = 0;
+  std::size_t forced = 0;    ///< of them, those with a face that forces more than the bound
+  std::size_t unforced = 0;  ///< above - forced
+  /// Largest ratio among the unforced tets (0 when there are none; +infinity for a flat one).
+  double max_unforced_ratio = 0.0;
+  int max_unforced_tet = -1;  ///< index into mesh.tets of that tet, -1 when there is none
+  /// The unforced tets by how many of their nodes are corners of surface triangles (0..4). Under
+  /// TetGen -Y the typical bad tet spans a thin layer between surface nodes (3 or 4 of them): the
+  /// points that would split it lie in the diametral spheres of kept triangles, and TetGen 1.5
+  /// rejects a point that encroaches a triangle it may not split.
+  std::array<std::size_t, 5> unforced_by_surface_nodes{};
+};
+
+/// Accounts for the tets of `mesh` above `bound` against the triangles of `surface` (see
+/// RadiusEdgeAccount). A surface triangle is recognised as a tet face by its corners' coordinates,
+/// compared exactly: the meshes this is for (TetGen's -Y mesh of the surface, the mesh the surface
+/// was taken from) keep the surface points as nodes, bit for bit. A triangle whose corners are not
+/// all nodes of `mesh` forces nothing there. Throws InputError when the surface or the mesh is
+/// invalid, or when the mesh has kMaxFaceKeyNodes nodes or more. Deterministic; O(tets + nodes log
+/// nodes).
+RadiusEdgeAccount account_radius_edge_above(const TetMesh& mesh, const TriSurface& surface, double bound);
 
 }  // namespace tissuemesh

@@ -251,13 +251,6 @@ QualityReport compute_quality(const TetMesh& mesh, const std::map<int, double>& 
   return report;
 }
 
-std::size_t count_radius_edge_above(const TetMesh& mesh, double bound) {
-  std::size_t above = 0;
-  for (const auto& t : mesh.tets)
-    above += tet_shape(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]).radius_edge_ratio > bound;
-  return above;
-}
-
 nlohmann::json to_json(const QualityReport& report) {
   nlohmann::json tissues = nlohmann::json::array();
   for (const auto& q : report.tissues) tissues.push_back(tissue_json(q));

@@ -125,11 +125,6 @@ struct QualityReport {
 QualityReport compute_quality(const TetMesh& mesh,
                               const std::map<int, double>& reference_volumes = {});
 
-/// Tets of `mesh` whose TetShape::radius_edge_ratio exceeds `bound` (e.g. the configured TetGen -q
-/// bound; TissueQuality::tets_radius_edge_above_2 is this count at 2); flat tets count. O(tets);
-/// does not validate the mesh (node indices must be in range: TetMesh::validate).
-std::size_t count_radius_edge_above(const TetMesh& mesh, double bound);
-
 /// {"tissues": [...], "total": {...}}; each tissue object has the TissueQuality field names
 /// (units in the key names: volume_mm3, min_dihedral_deg, ...), NaN written as null, and
 /// "dihedral_histogram": {"bin_width_deg", "counts", "angles_per_tet": 6}.

@@ -193,6 +193,18 @@ TEST_F(Check, TetgenMeshesTheSameGeometryAndMovesTheTumorAlike) {
   EXPECT_EQ(forced["triangle"]["vertices_mm"].size(), 3u);
   EXPECT_GE(tg_quality.total.max_radius_edge_ratio, forced["ratio"].get<double>() * (1.0 - test::kRelativeRoundoff));
   EXPECT_NE(r.out.find("forced by the input ("), std::string::npos) << r.out;
+  // The account of the tets above the bound: no input triangle forces more than 2 here, so every
+  // such tet, in either mesh, is counted as not forced.
+  for (const char* side : {"tetgen", "mesh"}) {
+    const auto& a = tetgen["tets_above_radius_edge_bound_account"][side];
+    const std::size_t above = tetgen[std::string(side) == "tetgen" ? "tets_above_radius_edge_bound"
+                                                                     : "mesh_tets_above_radius_edge_bound"]
+                                  .get<std::size_t>();
+    EXPECT_EQ(a["above"].get<std::size_t>(), above) << side;
+    EXPECT_EQ(a["forced_by_input_triangle"].get<std::size_t>(), 0u) << side;
+    EXPECT_EQ(a["not_forced"].get<std::size_t>(), above) << side;
+  }
+  EXPECT_NE(r.out.find("not forced by the input"), std::string::npos) << r.out;
   for (const auto& f : record["interfaces"])
     EXPECT_NEAR(f["tetgen_area_mm2"].get<double>(), f["mesh_area_mm2"].get<double>(),
                 test::kRelativeRoundoff * f["mesh_area_mm2"].get<double>())

@@ -119,11 +119,86 @@ TEST(ForcedRadiusEdge, TetgenNeverGoesBelowTheBoundItsInputForces) {
               << " triangles above 2), TetGen max " << measured << "\n";
     EXPECT_GE(measured, forced.ratio * (1.0 - kRelativeRoundoff)) << c.name;
     if (forced.triangles_above_bound > 0) {
-      EXPECT_GT(count_radius_edge_above(tg.mesh, params.radius_edge_ratio), 0u) << c.name;
+      EXPECT_GT(account_radius_edge_above(tg.mesh, c.surface, params.radius_edge_ratio).forced, 0u) << c.name;
     }
   }
   // The thin base forces more than the -q bound, so this case tests the bound, not -q.
   EXPECT_NEAR(forced_radius_edge_ratio(thin, 2.0).ratio, circumradius_over_shortest(thin.points[0], thin.points[1], thin.points[2]),
               kRelativeRoundoff * 6.7);
   EXPECT_EQ(forced_radius_edge_ratio(thin, 2.0).triangle, 0);
+}
+
+TEST(ForcedRadiusEdge, AccountSplitsTheTetsAboveTheBoundIntoForcedAndUnforced) {
+  // Three separate tets of one tissue:
+  // - "needle": on the thin 20 x 1.5 mm base of the test above (forces 6.685) with a tall apex;
+  // - "cap": a 10 mm equilateral triangle and a point 0.5 mm above its centre (circumradius
+  //   ~34 mm over a 5.8 mm shortest edge: ratio ~5.8), none of its faces thin (the sides' smallest
+  //   angle is ~30 degrees, forcing ~1);
+  // - "regular": the regular tet, ratio sqrt(6)/4.
+  TetMesh mesh;
+  mesh.tissue_names = {"t1"};
+  auto add_tet = [&](std::array<Vector3d, 4> p) {
+    if (signed_tet_volume(p[0], p[1], p[2], p[3]) < 0.0) std::swap(p[2], p[3]);
+    const int n = static_cast<int>(mesh.points.size());
+    mesh.points.insert(mesh.points.end(), p.begin(), p.end());
+    mesh.tets.push_back({n, n + 1, n + 2, n + 3});
+    mesh.tissue_ids.push_back(1);
+  };
+  add_tet({Vector3d(0, 0, 0), Vector3d(20, 0, 0), Vector3d(20, 1.5, 0), Vector3d(12, 0.7, 6)});
+  add_tet({Vector3d(30, 0, 0), Vector3d(40, 0, 0), Vector3d(35, 5 * std::sqrt(3.0), 0),
+           Vector3d(35, 5 / std::sqrt(3.0), 0.5)});
+  add_tet({Vector3d(50, 0, 0), Vector3d(51, 0, 0), Vector3d(50.5, std::sqrt(3.0) / 2, 0),
+           Vector3d(50.5, std::sqrt(3.0) / 6, std::sqrt(2.0 / 3.0))});
+  std::vector<double> ratio;
+  for (const auto& t : mesh.tets)
+    ratio.push_back(tet_shape(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]).radius_edge_ratio);
+  ASSERT_GT(ratio[0], 2.0);
+  ASSERT_GT(ratio[1], 2.0);
+  ASSERT_LT(ratio[2], 2.0);
+
+  // The surface: the needle's thin base (its own copies of the points, as interface_surface and
+  // TetGen give them), the cap's base (not thin: it forces 1/sqrt 3), and a thin triangle
+  // whose corners are not nodes of the mesh (it forces nothing there).
+  TriSurface s;
+  s.tissue_names = {"t1"};
+  add_triangle(s, {0, 0, 0}, {20, 1.5, 0}, {20, 0, 0}, 0, 1);
+  add_triangle(s, {30, 0, 0}, {35, 5 * std::sqrt(3.0), 0}, {40, 0, 0}, 0, 1);
+  add_triangle(s, {100, 0, 0}, {120, 1.5, 0}, {120, 0, 0}, 0, 1);
+  ASSERT_EQ(forced_radius_edge_ratio(s, 2.0).triangles_above_bound, 2u);
+
+  const RadiusEdgeAccount a = account_radius_edge_above(mesh, s, 2.0);
+  EXPECT_EQ(a.above, 2u);
+  EXPECT_EQ(a.forced, 1u);  // the needle
+  EXPECT_EQ(a.unforced, 1u);
+  EXPECT_EQ(a.max_unforced_tet, 1);  // the cap
+  EXPECT_NEAR(a.max_unforced_ratio, ratio[1], kRelativeRoundoff * ratio[1]);
+  // The cap's base corners are nodes of the surface, its apex is not.
+  EXPECT_EQ(a.unforced_by_surface_nodes, (std::array<std::size_t, 5>{0, 0, 0, 1, 0}));
+
+  // The forced bound holds for the needle tet, as the header comment proves.
+  EXPECT_GE(ratio[0], forced_radius_edge_ratio(s, 2.0).ratio * (1.0 - kRelativeRoundoff));
+
+  // A bound above the cap's ratio leaves only the forced needle; a bound above both, nothing.
+  const RadiusEdgeAccount b = account_radius_edge_above(mesh, s, ratio[1] * (1.0 + kRelativeRoundoff));
+  EXPECT_EQ(b.above, ratio[0] > ratio[1] ? 1u : 0u);
+  EXPECT_EQ(b.unforced, 0u);
+  EXPECT_EQ(b.max_unforced_tet, -1);
+  const RadiusEdgeAccount none = account_radius_edge_above(mesh, s, std::max(ratio[0], ratio[1]) * 2.0);
+  EXPECT_EQ(none.above, 0u);
+  EXPECT_EQ(none.forced, 0u);
+
+  // Without the thin base in the surface, the needle is the mesher's own doing.
+  TriSurface no_base = s;
+  no_base.triangles.erase(no_base.triangles.begin());
+  no_base.labels.erase(no_base.labels.begin());
+  const RadiusEdgeAccount c = account_radius_edge_above(mesh, no_base, 2.0);
+  EXPECT_EQ(c.forced, 0u);
+  EXPECT_EQ(c.unforced, 2u);
+  EXPECT_EQ(c.max_unforced_tet, ratio[0] > ratio[1] ? 0 : 1);
+  EXPECT_EQ(c.unforced_by_surface_nodes, (std::array<std::size_t, 5>{1, 0, 0, 1, 0}));  // needle: none left
+
+  // Invalid input is refused.
+  TriSurface bad = s;
+  bad.labels[0] = {1, 0};
+  EXPECT_THROW(account_radius_edge_above(mesh, bad, 2.0), InputError);
 }
