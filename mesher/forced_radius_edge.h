@@ -11,8 +11,9 @@
 // at least the largest 1 / (2 sin theta) over the triangles. A mesher that may split boundary
 // triangles (TetGen without -Y) is not bound by it.
 //
-// Deterministic; O(triangles). account_radius_edge_above() uses the bound to tell, for a given
-// mesh, the tets above a ratio that its surface forces from those its mesher could have improved.
+// forced_radius_edge_ratio() is O(triangles). account_radius_edge_above() uses the bound to tell,
+// for a given mesh, the tets above a ratio that its surface is proven to force from the others.
+// Deterministic.
 #pragma once
 
 #include "core/tet_mesh.h"
@@ -43,8 +44,9 @@ struct ForcedRadiusEdge {
 ForcedRadiusEdge forced_radius_edge_ratio(const TriSurface& surface, double bound);
 
 /// The tets of a mesh above a radius-edge bound, split by the cause the header comment proves:
-/// a tet with a face that is a surface triangle forcing more than the bound cannot meet it in any
-/// mesh keeping that triangle (forced); any other tet could (unforced: the mesher's own doing).
+/// a tet with a face that is a surface triangle forcing more than the bound cannot meet it
+/// (forced; any mesh keeping that triangle has such a tet). For any other tet this bound proves
+/// nothing (unforced): it may be the mesher's doing, or still unavoidable under its constraints.
 struct RadiusEdgeAccount {
   /// Tets whose TetShape::radius_edge_ratio exceeds the bound, flat tets included
   /// (TissueQuality::tets_radius_edge_above_2 is this count at 2).
@@ -54,10 +56,11 @@ struct RadiusEdgeAccount {
   /// Largest ratio among the unforced tets (0 when there are none; +infinity for a flat one).
   double max_unforced_ratio = 0.0;
   int max_unforced_tet = -1;  ///< index into mesh.tets of that tet, -1 when there is none
-  /// The unforced tets by how many of their nodes are corners of surface triangles (0..4). Under
-  /// TetGen -Y the typical bad tet spans a thin layer between surface nodes (3 or 4 of them): the
-  /// points that would split it lie in the diametral spheres of kept triangles, and TetGen 1.5
-  /// rejects a point that encroaches a triangle it may not split.
+  /// The unforced tets by how many of their nodes are corners of surface triangles (0..4). On the
+  /// phantom, TetGen -Y's unforced tets all have 2 or more: they span thin layers between surface
+  /// nodes. The likely reason (not checked here): TetGen 1.5 splits a bad tet at its
+  /// circumcentre and rejects that point when it encroaches a triangle -Y keeps (or, with -m, a
+  /// vertex's protecting ball), and inside a thin layer it nearly always does.
   std::array<std::size_t, 5> unforced_by_surface_nodes{};
 };
 
@@ -65,9 +68,10 @@ struct RadiusEdgeAccount {
 /// RadiusEdgeAccount). A surface triangle is recognised as a tet face by its corners' coordinates,
 /// compared exactly: the meshes this is for (TetGen's -Y mesh of the surface, the mesh the surface
 /// was taken from) keep the surface points as nodes, bit for bit. A triangle whose corners are not
-/// all nodes of `mesh` forces nothing there. Throws InputError when the surface or the mesh is
-/// invalid, or when the mesh has kMaxFaceKeyNodes nodes or more. Deterministic; O(tets + nodes log
-/// nodes).
+/// all nodes of `mesh` forces nothing there. Mesh nodes at the same coordinates (a mesh that is
+/// not conforming) are not told apart: a surface point goes to the first of them. Throws
+/// InputError when the surface or the mesh is invalid, or when the mesh has kMaxFaceKeyNodes
+/// (mesher/face_key.h) nodes or more. Deterministic; O(tets + (nodes + surface points) log nodes).
 RadiusEdgeAccount account_radius_edge_above(const TetMesh& mesh, const TriSurface& surface, double bound);
 
 }  // namespace tissuemesh

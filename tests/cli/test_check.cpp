@@ -203,6 +203,11 @@ TEST_F(Check, TetgenMeshesTheSameGeometryAndMovesTheTumorAlike) {
     EXPECT_EQ(a["above"].get<std::size_t>(), above) << side;
     EXPECT_EQ(a["forced_by_input_triangle"].get<std::size_t>(), 0u) << side;
     EXPECT_EQ(a["not_forced"].get<std::size_t>(), above) << side;
+    std::size_t by_nodes = 0;
+    ASSERT_EQ(a["not_forced_by_surface_nodes"].size(), 5u) << side;
+    for (const auto& n : a["not_forced_by_surface_nodes"]) by_nodes += n.get<std::size_t>();
+    EXPECT_EQ(by_nodes, above) << side;
+    EXPECT_TRUE(a["max_ratio_not_forced"].is_number()) << side;
   }
   EXPECT_NE(r.out.find("not forced by the input"), std::string::npos) << r.out;
   for (const auto& f : record["interfaces"])

@@ -152,8 +152,8 @@ TEST(ForcedRadiusEdge, AccountSplitsTheTetsAboveTheBoundIntoForcedAndUnforced) {
   std::vector<double> ratio;
   for (const auto& t : mesh.tets)
     ratio.push_back(tet_shape(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]).radius_edge_ratio);
-  ASSERT_GT(ratio[0], 2.0);
   ASSERT_GT(ratio[1], 2.0);
+  ASSERT_GT(ratio[0], ratio[1]);  // needle ~7.5, cap ~5.8
   ASSERT_LT(ratio[2], 2.0);
 
   // The surface: the needle's thin base (its own copies of the points, as interface_surface and
@@ -180,10 +180,12 @@ TEST(ForcedRadiusEdge, AccountSplitsTheTetsAboveTheBoundIntoForcedAndUnforced) {
 
   // A bound above the cap's ratio leaves only the forced needle; a bound above both, nothing.
   const RadiusEdgeAccount b = account_radius_edge_above(mesh, s, ratio[1] * (1.0 + kRelativeRoundoff));
-  EXPECT_EQ(b.above, ratio[0] > ratio[1] ? 1u : 0u);
+  EXPECT_EQ(b.above, 1u);
+  EXPECT_EQ(b.forced, 1u);
   EXPECT_EQ(b.unforced, 0u);
   EXPECT_EQ(b.max_unforced_tet, -1);
-  const RadiusEdgeAccount none = account_radius_edge_above(mesh, s, std::max(ratio[0], ratio[1]) * 2.0);
+  EXPECT_EQ(b.max_unforced_ratio, 0.0);
+  const RadiusEdgeAccount none = account_radius_edge_above(mesh, s, ratio[0] * 2.0);
   EXPECT_EQ(none.above, 0u);
   EXPECT_EQ(none.forced, 0u);
 
@@ -194,11 +196,26 @@ TEST(ForcedRadiusEdge, AccountSplitsTheTetsAboveTheBoundIntoForcedAndUnforced) {
   const RadiusEdgeAccount c = account_radius_edge_above(mesh, no_base, 2.0);
   EXPECT_EQ(c.forced, 0u);
   EXPECT_EQ(c.unforced, 2u);
-  EXPECT_EQ(c.max_unforced_tet, ratio[0] > ratio[1] ? 0 : 1);
+  EXPECT_EQ(c.max_unforced_tet, 0);
   EXPECT_EQ(c.unforced_by_surface_nodes, (std::array<std::size_t, 5>{1, 0, 0, 1, 0}));  // needle: none left
+
+  // A flat tet (four coplanar nodes, none on the surface) counts, with ratio +infinity.
+  TetMesh with_flat = mesh;
+  with_flat.points.insert(with_flat.points.end(), {Vector3d(60, 0, 0), Vector3d(61, 0, 0), Vector3d(61, 1, 0), Vector3d(60, 1, 0)});
+  with_flat.tets.push_back({12, 13, 14, 15});
+  with_flat.tissue_ids.push_back(1);
+  const RadiusEdgeAccount f = account_radius_edge_above(with_flat, s, 2.0);
+  EXPECT_EQ(f.above, 3u);
+  EXPECT_EQ(f.unforced, 2u);
+  EXPECT_TRUE(std::isinf(f.max_unforced_ratio));
+  EXPECT_EQ(f.max_unforced_tet, 3);
+  EXPECT_EQ(f.unforced_by_surface_nodes, (std::array<std::size_t, 5>{1, 0, 0, 1, 0}));
 
   // Invalid input is refused.
   TriSurface bad = s;
   bad.labels[0] = {1, 0};
   EXPECT_THROW(account_radius_edge_above(mesh, bad, 2.0), InputError);
+  TetMesh bad_mesh = mesh;
+  bad_mesh.tets[0][3] = 99;  // no such node
+  EXPECT_THROW(account_radius_edge_above(bad_mesh, s, 2.0), InputError);
 }
