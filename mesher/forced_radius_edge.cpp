@@ -15,13 +15,15 @@ namespace tissuemesh {
 
 namespace {
 
-/// 1 / (2 sin theta_min) of surface triangle t (the header comment's bound); +infinity when flat.
-double triangle_forced_ratio(const TriSurface& surface, std::size_t t) {
+/// Smallest interior angle of surface triangle t, radians: exact to round-off for every shape
+/// (atan2) and 0 for a zero-area triangle.
+double smallest_angle(const TriSurface& surface, std::size_t t) {
   const auto& k = surface.triangles[t];
-  // min_angle is exact to round-off for every shape (atan2) and 0 for a zero-area triangle,
-  // whose bound is then 1 / 0 = +infinity.
-  return 1.0 / (2.0 * std::sin(min_angle(surface.points[k[0]], surface.points[k[1]], surface.points[k[2]])));
+  return min_angle(surface.points[k[0]], surface.points[k[1]], surface.points[k[2]]);
 }
+
+/// The header comment's bound for a triangle with smallest angle theta: +infinity when theta = 0.
+double forced_ratio(double theta) { return 1.0 / (2.0 * std::sin(theta)); }
 
 }  // namespace
 
@@ -29,13 +31,13 @@ ForcedRadiusEdge forced_radius_edge_ratio(const TriSurface& surface, double boun
   surface.validate("surface for the forced radius-edge ratio");
   ForcedRadiusEdge forced;
   for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
-    const double ratio = triangle_forced_ratio(surface, t);
+    const double theta = smallest_angle(surface, t);
+    const double ratio = forced_ratio(theta);
     if (ratio > bound) ++forced.triangles_above_bound;
     if (forced.triangle < 0 || ratio > forced.ratio) {
-      const auto& k = surface.triangles[t];
       forced.ratio = ratio;
       forced.triangle = static_cast<int>(t);
-      forced.min_angle_deg = min_angle(surface.points[k[0]], surface.points[k[1]], surface.points[k[2]]) * 180.0 / EIGEN_PI;
+      forced.min_angle_deg = theta * 180.0 / EIGEN_PI;
     }
   }
   return forced;
@@ -65,7 +67,7 @@ RadiusEdgeAccount account_radius_edge_above(const TetMesh& mesh, const TriSurfac
   for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
     const auto& k = surface.triangles[t];
     const int a = node_of_point[k[0]], b = node_of_point[k[1]], c = node_of_point[k[2]];
-    if (a >= 0 && b >= 0 && c >= 0 && triangle_forced_ratio(surface, t) > bound) forcing_faces.insert(face_key(a, b, c));
+    if (a >= 0 && b >= 0 && c >= 0 && forced_ratio(smallest_angle(surface, t)) > bound) forcing_faces.insert(face_key(a, b, c));
   }
   RadiusEdgeAccount account;
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
