@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 namespace tissuemesh {
 
@@ -226,6 +227,35 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
           }
         }
       }
+      // (the implicit barrier of the loop above: every element of the chunk is evaluated)
+      // Scatter in element order, in parallel: each thread owns one contiguous range of the
+      // matrix's values and of f_int and adds, walking the chunk's elements in order, only the
+      // contributions that fall into its ranges. Every entry thus receives its contributions in
+      // element order, as a serial scatter would: bit-identical for any thread count.
+      if (failed_element == std::numeric_limits<int>::max()) {
+        const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+        const auto range = [t, nt](Eigen::Index size) {
+          return std::pair<Eigen::Index, Eigen::Index>(size * t / nt, size * (t + 1) / nt);
+        };
+        const auto [f_lo, f_hi] = range(out.f_int.size());
+        for (int e = start; e < end; ++e) {
+          const double* f = forces_.data() + static_cast<std::size_t>(e - start) * nf;
+          for (int a = 0; a < n_; ++a)
+            for (int i = 0; i < 3; ++i) {
+              const Eigen::Index g = 3 * static_cast<Eigen::Index>(elements_[e][a]) + i;
+              if (g >= f_lo && g < f_hi) out.f_int[g] += f[3 * a + i];
+            }
+        }
+        if (t == 0)
+          for (int e = start; e < end; ++e) out.energy += energies_[e - start];
+        if (with_tangent) {
+          const auto [v_lo, v_hi] = range(K_.nonZeros());
+          const int* slots = slots_.data() + base;  // slots[i]: where buffer_[i] goes
+          const int count = slot_start_[end] - base;
+          for (int i = 0; i < count; ++i)
+            if (slots[i] >= v_lo && slots[i] < v_hi) values[slots[i]] += buffer_[i];
+        }
+      }
     }
     if (failed_element != std::numeric_limits<int>::max()) {
       out.ok = false;
@@ -234,16 +264,6 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
            << failed_element << " (min J " << failure.min_J << ")";
       out.note = note.str();
       return out;
-    }
-    // Serial scatter in element order: the same summation order for any thread count.
-    for (int e = start; e < end; ++e) {
-      const double* f = forces_.data() + static_cast<std::size_t>(e - start) * nf;
-      out.energy += energies_[e - start];
-      for (int a = 0; a < n_; ++a)
-        for (int i = 0; i < 3; ++i) out.f_int[3 * elements_[e][a] + i] += f[3 * a + i];
-      if (!with_tangent) continue;
-      const double* m = buffer_.data() + (slot_start_[e] - base);
-      for (int p = slot_start_[e]; p < slot_start_[e + 1]; ++p) values[slots_[p]] += m[p - slot_start_[e]];
     }
   }
   if (nodal_) {

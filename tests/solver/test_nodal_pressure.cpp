@@ -2,11 +2,7 @@
 // and tangent against finite differences of the energy (sliding and fixed nodes included), the
 // affine patch (identical to the standard tet4 under a homogeneous deformation), and the locking
 // it cures: the nearly incompressible block sags like tet10, not like the standard tet4.
-#include "materials/make_law.h"
-#include "materials/volumetric_split.h"
-#include "solver_check/dof_map.h"
-#include "solver_check/nodal_pressure.h"
-#include "solver_check/reduced_assembly.h"
+#include "solver/block_assembly.h"
 #include "solver_check/static_solver.h"
 #include "support/model_fixture.h"
 #include "support/tolerances.h"
@@ -23,59 +19,8 @@
 namespace tissuemesh {
 namespace {
 
-/// The block model (three tissues, fixed posterior face, sliding top with tilted normals) and both
-/// assemblies of it.
-struct Block {
-  Model model;
-  std::vector<std::unique_ptr<HyperelasticLaw>> laws, shear;
-  std::vector<const HyperelasticLaw*> full, rest;
-  std::vector<int> tissue;
-  std::vector<ElementGeometry> geometry;
-  std::unique_ptr<DofMap> dofs;
-  std::unique_ptr<NodalPressure> nodal;
-  std::unique_ptr<ReducedAssembly> standard, with_nodal;
-
-  Block() {
-    test::BlockModelOptions options;
-    options.sliding_top = true;
-    model = test::block_model(options);  // mm-t-s: laws in MPa, lengths in mm
-    // Tilt the sliding normals, so that the top nodes' bases are not coordinate axes.
-    for (NodeSet& set : model.node_sets)
-      for (Eigen::Vector3d& n : set.normals) n = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
-    for (const MaterialSpec& spec : model.materials) {
-      laws.push_back(make_law(spec, model.units));
-      shear.push_back(make_shear_part(*laws.back()));
-    }
-    geometry.resize(model.elements.size());
-    for (std::size_t e = 0; e < model.elements.size(); ++e) {
-      ElementNodes X(4, 3);
-      for (int a = 0; a < 4; ++a) X.row(a) = model.nodes[model.elements[e][a]].transpose();
-      EXPECT_EQ(element_geometry(ElementOrder::Linear, X, geometry[e]), ElementStatus::Ok);
-      tissue.push_back(model.tissue_ids[e] - 1);
-      full.push_back(laws[tissue.back()].get());
-      rest.push_back(shear[tissue.back()].get());
-    }
-    dofs = std::make_unique<DofMap>(model, std::vector<PrescribedDisplacement>{});
-    nodal = std::make_unique<NodalPressure>(model.elements, geometry, tissue, full);
-    standard = std::make_unique<ReducedAssembly>(ElementOrder::Linear, model.elements, geometry, full, *dofs, 1);
-    with_nodal =
-        std::make_unique<ReducedAssembly>(ElementOrder::Linear, model.elements, geometry, rest, *dofs, 2, nodal.get());
-  }
-
-  /// A smooth displacement (mm) with shear and a few percent of volume change, on the free dofs.
-  Eigen::VectorXd smooth_q(double amplitude) const {
-    Eigen::VectorXd u(3 * model.nodes.size());
-    for (std::size_t v = 0; v < model.nodes.size(); ++v) {
-      const Eigen::Vector3d& X = model.nodes[v];
-      u.segment<3>(3 * v) << std::sin(0.3 * X.x() + 0.2 * X.z()), std::cos(0.25 * X.y() - 0.1 * X.x()),
-          std::sin(0.2 * X.z() + 0.3 * X.y());
-    }
-    return amplitude * dofs->reduce(u);
-  }
-};
-
 TEST(NodalPressure, ForceAndTangentAreTheDerivativesOfTheEnergy) {
-  Block b;
+  test::BlockAssembly b;
   const Eigen::VectorXd q = b.smooth_q(0.3);
   const ReducedAssembly::Result r = b.with_nodal->assemble(b.dofs->expand(q, 0.0), true);
   ASSERT_TRUE(r.ok) << r.note;
@@ -100,7 +45,7 @@ TEST(NodalPressure, ForceAndTangentAreTheDerivativesOfTheEnergy) {
 TEST(NodalPressure, HomogeneousDeformationGivesTheStandardTet4ForceAndEnergy) {
   // Affine u = (F - I) X: every element has the same J, so every patch does too and the nodal
   // integration of U(J) is exact; force and energy equal the standard tet4's to round-off.
-  Block b;
+  test::BlockAssembly b;
   Eigen::Matrix3d A;
   A << 0.02, 0.01, -0.015, 0.005, -0.03, 0.01, 0.012, 0.0, 0.025;
   Eigen::VectorXd u(3 * b.model.nodes.size());
@@ -112,7 +57,7 @@ TEST(NodalPressure, HomogeneousDeformationGivesTheStandardTet4ForceAndEnergy) {
 }
 
 TEST(NodalPressure, InvertedElementIsReportedNotAssembled) {
-  Block b;
+  test::BlockAssembly b;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * b.model.nodes.size());
   const int e = 700, node = b.model.elements[e][0];
   // Push corner 0 through the opposite face: element 700 (and maybe others) inverts.
