@@ -110,6 +110,8 @@ nlohmann::json solver_json(const SolveResult& r) {
           {"failed_factorisations", r.failed_factorisations},
           {"preconditioned_cg_iterations", r.linear_iterations},
           {"cg_preconditioner", r.cg_preconditioner},
+          {"tangent_assemblies", r.tangent_assemblies},
+          {"force_assemblies", r.force_assemblies},
           {"assembly_seconds", r.assembly_seconds},
           {"linear_solve_seconds", r.linear_solve_seconds},
           {"factorisation_seconds", r.factorisation_seconds},

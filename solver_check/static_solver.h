@@ -34,7 +34,9 @@
 //   25 iterations; a tangent that is not positive definite gives a damped (shifted) step. Backtracking line search: step lengths 1, 1/2, ... 1/16,
 //   the first that keeps every element un-inverted and lowers either the potential energy
 //   W(u) - load . u or ||R|| is taken; when none does, the un-inverted trial with the smallest
-//   ||R|| is taken.
+//   ||R|| is taken. The tangent is assembled only where a direction is solved next: a full step
+//   that meets the displacement test and whose residual, predicted as forcing x ||R||, meets the
+//   residual test is evaluated for its force alone (the increment most likely ends there).
 // - each increment starts from a secant prediction (the last increment's change, scaled), or
 //   from the last accepted state when that prediction inverts an element, when the first linear
 //   solve there fails (a tangent too far from positive definite for the shift ladder), or after a
@@ -138,6 +140,11 @@ struct SolveResult {
   int linear_iterations = 0;      ///< preconditioned CG iterations on kept factorisations
   std::string cg_preconditioner;  ///< SparseSpdSolver::preconditioner()
   double assembly_seconds = 0.0;  ///< wall time in element evaluation and assembly
+  /// Assemblies of force and tangent (each Newton direction needs one at its start point, so at
+  /// least total_iterations) and of the force alone (line-search trials, and full steps expected
+  /// to end their increment, whose tangent would go unused).
+  int tangent_assemblies = 0;
+  int force_assemblies = 0;
   double linear_solve_seconds = 0.0;  ///< wall time in factorisation and solves
   double factorisation_seconds = 0.0; ///< of it, in numeric factorisations
   double factor_entries = 0.0;    ///< entries of the tangent's factor (SparseSpdSolver::factor_entries)

@@ -89,6 +89,19 @@ TEST_P(Equilibrium, ReactionsBalanceTheWeight) {
   }
 }
 
+TEST_P(Equilibrium, TangentsAreAssembledOnlyWhereADirectionIsSolved) {
+  // Each Newton direction needs the tangent at its start point: at least one tangent per
+  // iteration. A full step expected to end its increment is evaluated for the force alone, so
+  // the accepted increments' last iterates (one per increment) do not all get a tangent.
+  const SolveResult& r = default_solve(GetParam());
+  ASSERT_TRUE(r.converged) << r.message;
+  std::cout << "[ solver   ] " << r.steps.size() << " increments, " << r.total_iterations << " iterations, "
+            << r.tangent_assemblies << " tangent and " << r.force_assemblies << " force-only assemblies\n";
+  EXPECT_GE(r.tangent_assemblies, r.total_iterations);
+  EXPECT_LT(r.tangent_assemblies, r.total_iterations + static_cast<int>(r.steps.size()));
+  EXPECT_GE(r.force_assemblies, r.total_iterations + static_cast<int>(r.steps.size()) - r.tangent_assemblies);
+}
+
 TEST_P(Equilibrium, FixedNodesStayAndTheAnteriorFaceSags) {
   const Model model = block(GetParam());
   const SolveResult& r = default_solve(GetParam());
