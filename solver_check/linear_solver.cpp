@@ -6,11 +6,13 @@
 #include <Eigen/SparseCholesky>
 #ifdef TISSUEMESH_HAVE_CHOLMOD
 #include <Eigen/CholmodSupport>
+#include <dlfcn.h>
 #endif
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <exception>
 
@@ -57,6 +59,23 @@ class CholmodLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double
            L->dtype == CHOLMOD_DOUBLE;
   }
 };
+
+/// OpenBLAS (Debian's BLAS for CHOLMOD here) splits a supernode's dense work by its thread count,
+/// so the factor's last bits, and the solution's, change with that count. Its default count is the
+/// number of processors (or $OMP_NUM_THREADS): the same model would give other bits on another
+/// machine. So CHOLMOD's BLAS runs on kBlasThreads unless $OPENBLAS_NUM_THREADS says otherwise.
+/// Measured: on the 60K-tet benchmark model (bench/bench_solver.sh) solution.vtu is identical for
+/// OPENBLAS_NUM_THREADS 2, 3, 4, 8 and 16 but not 1; on a 41K-unknown grid matrix
+/// (tests/solver/test_linear_solver.cpp) counts 1-6, 8 and 16 all give different bits. Two: CI's
+/// machines have two cores, and one is slower (the benchmark model's factorisations 2.4-2.9 s
+/// against 1.8-2.3 s in three alternating runs); large tet10 models gain from more cores (set the
+/// variable). The function is looked up at run time, so another BLAS is left alone.
+constexpr int kBlasThreads = 2;
+void fix_blas_threads() {
+  if (const char* env = std::getenv("OPENBLAS_NUM_THREADS"); env && std::atoi(env) > 0) return;
+  using Set = void (*)(int);
+  if (const auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(kBlasThreads);
+}
 #endif
 
 }  // namespace
@@ -249,6 +268,9 @@ SparseSpdSolver::SparseSpdSolver(LinearSolverKind kind, int threads) : impl_(std
     throw SolverError("linear solver CHOLMOD requested, but this build has no CHOLMOD (install libsuitesparse-dev "
                       "and rebuild)");
   impl_->use_cholmod = kind != LinearSolverKind::SimplicialLDLT && cholmod_available();
+#ifdef TISSUEMESH_HAVE_CHOLMOD
+  if (impl_->use_cholmod) fix_blas_threads();
+#endif
 }
 
 SparseSpdSolver::~SparseSpdSolver() = default;

@@ -42,7 +42,9 @@ namespace tissuemesh {
 class SparseSpdSolver {
  public:
   /// Auto = Cholmod when available. Throws SolverError for Cholmod in a build without it.
-  /// `threads`: for the preconditioner's triangular solves (CHOLMOD's BLAS is left as configured).
+  /// `threads`: for the preconditioner's triangular solves. With CHOLMOD on OpenBLAS, sets
+  /// OpenBLAS to 2 threads (process-wide) unless $OPENBLAS_NUM_THREADS is set: its thread count
+  /// changes the factor's last bits, and a fixed one gives the same solution on any machine.
   explicit SparseSpdSolver(LinearSolverKind kind, int threads = 1);
   ~SparseSpdSolver();
   SparseSpdSolver(const SparseSpdSolver&) = delete;
