@@ -3,8 +3,6 @@
 #include "core/errors.h"
 #include "fe_export/gmsh/gmsh_session.h"
 
-#include <gmsh.h>
-
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -18,8 +16,8 @@ namespace {
 constexpr int kTet4 = 4;  // Gmsh element type
 
 void build(const TetMesh& mesh) {
-  gmsh::model::add("quality");
-  gmsh::model::addDiscreteEntity(3, 1);
+  gmsh_sdk::add_model("quality");
+  gmsh_sdk::add_discrete_entity(3, 1);
   std::vector<std::size_t> node_tags(mesh.points.size());
   std::vector<double> coords;
   coords.reserve(3 * mesh.points.size());
@@ -27,15 +25,15 @@ void build(const TetMesh& mesh) {
     node_tags[i] = i + 1;
     coords.insert(coords.end(), mesh.points[i].data(), mesh.points[i].data() + 3);
   }
-  gmsh::model::mesh::addNodes(3, 1, node_tags, coords);
+  gmsh_sdk::add_nodes(3, 1, node_tags, coords);
   std::vector<std::size_t> element_tags(mesh.tets.size()), element_nodes;
   element_nodes.reserve(4 * mesh.tets.size());
   for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
     element_tags[e] = e + 1;
     for (int n : mesh.tets[e]) element_nodes.push_back(static_cast<std::size_t>(n) + 1);
   }
-  gmsh::model::mesh::addElementsByType(1, kTet4, element_tags, element_nodes);
-  gmsh::model::addPhysicalGroup(3, {1}, 1);
+  gmsh_sdk::add_elements_by_type(1, kTet4, element_tags, element_nodes);
+  gmsh_sdk::add_physical_group(3, {1}, 1);
 }
 
 // Column index of `name` in the view header T2(...){"SICN","Gamma"};
@@ -100,22 +98,18 @@ std::vector<GmshTetQuality> read_statistics(const TetMesh& mesh, const std::stri
 GmshQuality gmsh_tet_quality(const TetMesh& mesh, const std::string& pos_path) {
   mesh.validate("Gmsh quality");
   GmshQuality result;
-  {
+  try {
     GmshSession session;
-    try {
-      build(mesh);
-      gmsh::option::setNumber("Print.PostElementary", 0);
-      gmsh::option::setNumber("Print.PostElement", 0);
-      gmsh::option::setNumber("Print.PostSICN", 1);
-      gmsh::option::setNumber("Print.PostGamma", 1);
-      gmsh::option::setNumber("Mesh.SaveAll", 1);
-      gmsh::write(pos_path);
-      gmsh::option::getString("General.Version", result.version);
-    } catch (const std::string& message) {  // the Gmsh 4.8 API throws its error message
-      throw OutputError(pos_path + ": Gmsh cannot write its quality statistics: " + message);
-    } catch (const std::exception& e) {
-      throw OutputError(pos_path + ": Gmsh cannot write its quality statistics: " + e.what());
-    }
+    build(mesh);
+    gmsh_sdk::set_number("Print.PostElementary", 0);
+    gmsh_sdk::set_number("Print.PostElement", 0);
+    gmsh_sdk::set_number("Print.PostSICN", 1);
+    gmsh_sdk::set_number("Print.PostGamma", 1);
+    gmsh_sdk::set_number("Mesh.SaveAll", 1);
+    gmsh_sdk::write(pos_path);
+    result.version = gmsh_sdk::get_string("General.Version");
+  } catch (const std::exception& e) {  // Gmsh's message, or why the SDK could not be loaded
+    throw OutputError(pos_path + ": Gmsh cannot write its quality statistics: " + e.what());
   }
   result.tets = read_statistics(mesh, pos_path);
   return result;

@@ -1,20 +1,21 @@
-// gmsh::initialize / gmsh::finalize around one use of the Gmsh SDK, also when something throws.
-// The SDK is global state: one session at a time, not thread-safe.
+// gmsh_sdk::initialize / finalize around one use of the Gmsh SDK, also when something throws.
+// The SDK is global state: one session at a time, not thread-safe. The first session of a process
+// loads the SDK (fe_export/gmsh/gmsh_sdk.h).
 #pragma once
 
-#include <gmsh.h>
+#include "fe_export/gmsh/gmsh_sdk.h"
 
 namespace tissuemesh {
 
 class GmshSession {
  public:
   GmshSession() {
-    gmsh::initialize(0, nullptr, false);  // no user config files: results must not depend on them
-    gmsh::option::setNumber("General.Terminal", 0);
+    gmsh_sdk::initialize();  // no user config files: results must not depend on them
+    gmsh_sdk::set_number("General.Terminal", 0);
   }
   ~GmshSession() {
     try {
-      gmsh::finalize();
+      gmsh_sdk::finalize();
     } catch (...) {
     }
   }

@@ -11,8 +11,6 @@
 #include "core/errors.h"
 #include "fe_export/gmsh/gmsh_session.h"
 
-#include <gmsh.h>
-
 #include <array>
 #include <exception>
 
@@ -23,14 +21,14 @@ namespace {
 constexpr int kTet4 = 4, kTet10 = 11, kTri3 = 2, kTri6 = 9, kPoint = 15;  // Gmsh element types
 
 // Gmsh's tet10 differs from VTK's/the Model's in the last two midside nodes: Gmsh slot 8 is edge
-// (2,3), slot 9 edge (1,3) (gmsh::model::mesh::getElementProperties(11) local coordinates).
+// (2,3), slot 9 edge (1,3) (Gmsh's getElementProperties(11) local coordinates).
 constexpr std::array<int, 10> kModelSlotOfGmshTet10{0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
 
 void build(const Model& model) {
   const std::size_t n_nodes = model.nodes.size();
   const std::size_t n_tissues = model.tissue_names.size();
   const int npe = model.nodes_per_element();
-  gmsh::model::add("tissuemesh");
+  gmsh_sdk::add_model("tissuemesh");
 
   std::vector<std::vector<std::size_t>> tets_of(n_tissues);
   for (std::size_t e = 0; e < model.elements.size(); ++e)
@@ -47,7 +45,7 @@ void build(const Model& model) {
   for (std::size_t t = 0; t < n_tissues; ++t) {
     if (tets_of[t].empty()) continue;
     const int tag = static_cast<int>(t + 1);
-    gmsh::model::addDiscreteEntity(3, tag);
+    gmsh_sdk::add_discrete_entity(3, tag);
     std::vector<std::size_t> node_tags;
     std::vector<double> coords;
     for (std::size_t i = 0; i < n_nodes; ++i)
@@ -55,7 +53,7 @@ void build(const Model& model) {
         node_tags.push_back(i + 1);
         coords.insert(coords.end(), model.nodes[i].data(), model.nodes[i].data() + 3);
       }
-    gmsh::model::mesh::addNodes(3, tag, node_tags, coords);
+    gmsh_sdk::add_nodes(3, tag, node_tags, coords);
   }
   for (std::size_t t = 0; t < n_tissues; ++t) {
     if (tets_of[t].empty()) continue;
@@ -68,10 +66,10 @@ void build(const Model& model) {
         node_tags.push_back(static_cast<std::size_t>(model.elements[e][slot]) + 1);
       }
     }
-    gmsh::model::mesh::addElementsByType(tag, model.order == ElementOrder::Linear ? kTet4 : kTet10, element_tags,
+    gmsh_sdk::add_elements_by_type(tag, model.order == ElementOrder::Linear ? kTet4 : kTet10, element_tags,
                                          node_tags);
-    gmsh::model::addPhysicalGroup(3, {tag}, tag);
-    gmsh::model::setPhysicalName(3, tag, model.tissue_names[t]);
+    gmsh_sdk::add_physical_group(3, {tag}, tag);
+    gmsh_sdk::set_physical_name(3, tag, model.tissue_names[t]);
   }
 
   std::size_t next_element = model.elements.size() + 1;
@@ -80,21 +78,21 @@ void build(const Model& model) {
     const NodeSet& set = model.node_sets[s];
     std::vector<int> points;
     for (int n : set.nodes) {
-      const int p = gmsh::model::addDiscreteEntity(0, next_point++);
+      const int p = gmsh_sdk::add_discrete_entity(0, next_point++);
       const Eigen::Vector3d& x = model.nodes[static_cast<std::size_t>(n)];
-      gmsh::model::setCoordinates(p, x.x(), x.y(), x.z());
-      gmsh::model::mesh::addElementsByType(p, kPoint, {next_element++}, {static_cast<std::size_t>(n) + 1});
+      gmsh_sdk::set_coordinates(p, x.x(), x.y(), x.z());
+      gmsh_sdk::add_elements_by_type(p, kPoint, {next_element++}, {static_cast<std::size_t>(n) + 1});
       points.push_back(p);
     }
     const int group = static_cast<int>(s + 1);
-    gmsh::model::addPhysicalGroup(0, points, group);
-    gmsh::model::setPhysicalName(0, group, set.name);
+    gmsh_sdk::add_physical_group(0, points, group);
+    gmsh_sdk::set_physical_name(0, group, set.name);
   }
 
   for (std::size_t f = 0; f < model.face_sets.size(); ++f) {
     const FaceSet& set = model.face_sets[f];
     const int tag = static_cast<int>(f + 1);
-    gmsh::model::addDiscreteEntity(2, tag);
+    gmsh_sdk::add_discrete_entity(2, tag);
     std::vector<std::size_t> element_tags, node_tags;
     for (const auto& [e, face] : set.faces) {
       const auto& el = model.elements[static_cast<std::size_t>(e)];
@@ -103,10 +101,10 @@ void build(const Model& model) {
       if (model.order == ElementOrder::Quadratic)  // tri6: midsides of (c0,c1) (c1,c2) (c2,c0), Gmsh's order
         for (int m : face_midsides(face)) node_tags.push_back(static_cast<std::size_t>(el[m]) + 1);
     }
-    gmsh::model::mesh::addElementsByType(tag, model.order == ElementOrder::Linear ? kTri3 : kTri6, element_tags,
+    gmsh_sdk::add_elements_by_type(tag, model.order == ElementOrder::Linear ? kTri3 : kTri6, element_tags,
                                          node_tags);
-    gmsh::model::addPhysicalGroup(2, {tag}, tag);
-    gmsh::model::setPhysicalName(2, tag, set.name);
+    gmsh_sdk::add_physical_group(2, {tag}, tag);
+    gmsh_sdk::set_physical_name(2, tag, set.name);
   }
 }
 
@@ -114,18 +112,16 @@ void build(const Model& model) {
 
 void write_gmsh(const Model& model, const std::string& path) {
   validate_model(model);  // every writer refuses an invalid model first, also when called directly
-  GmshSession session;
   try {
+    GmshSession session;
     build(model);
-    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-    gmsh::option::setNumber("Mesh.Binary", 0);
-    gmsh::option::setNumber("Mesh.SaveAll", 0);  // every entity has a physical group: all is saved
-    gmsh::write(path);
-  } catch (const std::string& message) {  // the Gmsh 4.8 API throws its error message
-    throw OutputError(path + ": cannot write Gmsh mesh: " + message);
+    gmsh_sdk::set_number("Mesh.MshFileVersion", 4.1);
+    gmsh_sdk::set_number("Mesh.Binary", 0);
+    gmsh_sdk::set_number("Mesh.SaveAll", 0);  // every entity has a physical group: all is saved
+    gmsh_sdk::write(path);
   } catch (const Error&) {
     throw;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // Gmsh's message, or why the SDK could not be loaded
     throw OutputError(path + ": cannot write Gmsh mesh: " + e.what());
   }
 }
