@@ -66,11 +66,17 @@ class CholmodLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double
 /// machine. So CHOLMOD's BLAS runs on kBlasThreads unless $OPENBLAS_NUM_THREADS says otherwise.
 /// Measured: on the 60K-tet benchmark model (bench/bench_solver.sh) solution.vtu is identical for
 /// OPENBLAS_NUM_THREADS 2, 3, 4, 8 and 16 but not 1; on a 41K-unknown grid matrix
-/// (tests/solver/test_linear_solver.cpp) counts 1-6, 8 and 16 all give different bits. Two: CI's
-/// machines have two cores, and one is slower (the benchmark model's factorisations 2.4-2.9 s
-/// against 1.8-2.3 s in three alternating runs); large tet10 models gain from more cores (set the
-/// variable). The function is looked up at run time, so another BLAS is left alone.
-constexpr int kBlasThreads = 2;
+/// (tests/solver/test_linear_solver.cpp) counts 1-6, 8 and 16 all give different bits.
+/// One thread: OpenBLAS's threads synchronise at every multithreaded BLAS call of a factorisation,
+/// and when other processes keep the cores busy each synchronisation waits for a time slice.
+/// Measured on the benchmark model, 2-core machine (2026-11-27): with two busy loops beside it
+/// the solve took 12.7-14.0 s with 1 BLAS thread and 82.1-86.8 s with 2 (factorisations 4.8-5.5 s
+/// against 67.8-70.1 s); on the idle machine 5.97 s against 5.46 s (medians of 6 alternating runs;
+/// factorisations 2.29 s against 1.95 s). Parameter sweeps run solves side by side, and a busy
+/// machine is the common case; large tet10 models on idle many-core machines gain from more
+/// threads (set the variable). The function is looked up at run time, so another BLAS is left
+/// alone.
+constexpr int kBlasThreads = 1;
 void fix_blas_threads() {
   if (const char* env = std::getenv("OPENBLAS_NUM_THREADS"); env && std::atoi(env) > 0) return;
   using Set = void (*)(int);

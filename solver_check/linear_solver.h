@@ -43,8 +43,9 @@ class SparseSpdSolver {
  public:
   /// Auto = Cholmod when available. Throws SolverError for Cholmod in a build without it.
   /// `threads`: for the preconditioner's triangular solves. With CHOLMOD on OpenBLAS, sets
-  /// OpenBLAS to 2 threads (process-wide) unless $OPENBLAS_NUM_THREADS is set: its thread count
-  /// changes the factor's last bits, and a fixed one gives the same solution on any machine.
+  /// OpenBLAS to 1 thread (process-wide) unless $OPENBLAS_NUM_THREADS is set: its thread count
+  /// changes the factor's last bits (a fixed one gives the same solution on any machine), and its
+  /// threads slow a factorisation many times over when other processes keep the cores busy.
   explicit SparseSpdSolver(LinearSolverKind kind, int threads = 1);
   ~SparseSpdSolver();
   SparseSpdSolver(const SparseSpdSolver&) = delete;

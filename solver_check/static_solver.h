@@ -104,7 +104,7 @@ struct SolveOptions {
   /// Imposed displacements (ramped with the load). Empty for the usual gravity solve.
   std::vector<PrescribedDisplacement> prescribed;
   LinearSolverKind linear_solver = LinearSolverKind::Auto;
-  /// Threads for assembly (CHOLMOD's BLAS: 2, see linear_solver.h); 0 = $OMP_NUM_THREADS, else all
+  /// Threads for assembly (CHOLMOD's BLAS: 1, see linear_solver.h); 0 = $OMP_NUM_THREADS, else all
   /// processors.
   int threads = 0;
   /// Called after every attempted increment, e.g. to print progress; may be empty.
