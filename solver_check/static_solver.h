@@ -34,9 +34,9 @@
 //   25 iterations; a tangent that is not positive definite gives a damped (shifted) step. Backtracking line search: step lengths 1, 1/2, ... 1/16,
 //   the first that keeps every element un-inverted and lowers either the potential energy
 //   W(u) - load . u or ||R|| is taken; when none does, the un-inverted trial with the smallest
-//   ||R|| is taken. The tangent is assembled only where a direction is solved next: a full step
-//   that meets the displacement test and whose residual, predicted as forcing x ||R||, meets the
-//   residual test is evaluated for its force alone (the increment most likely ends there).
+//   ||R|| is taken. A full step predicted to end its increment (it meets the displacement test,
+//   and its residual predicted as forcing x ||R|| meets the residual test) is evaluated for its
+//   force alone, its tangent being of no use there; when it falls short, the tangent follows.
 // - each increment starts from a secant prediction (the last increment's change, scaled), or
 //   from the last accepted state when that prediction inverts an element, when the first linear
 //   solve there fails (a tangent too far from positive definite for the shift ladder), or after a

@@ -74,14 +74,15 @@ std::string take(char* s) {
   return out;
 }
 
-/// Throws GmshError with the SDK's last error message when ierr says the call failed.
+/// Throws GmshError naming the call, with the SDK's last logged error (which may be an older one
+/// when the call failed without logging), when ierr says the call failed.
 void check(int ierr, const char* call) {
   if (ierr == 0) return;
   char* message = nullptr;
   int ignored = 0;
   api().last_error(&message, &ignored);
-  std::string text = take(message);
-  throw GmshError(text.empty() ? std::string("Gmsh's ") + call + " failed" : text);
+  const std::string text = take(message);
+  throw GmshError(std::string("Gmsh's ") + call + " failed" + (text.empty() ? "" : ": " + text));
 }
 
 }  // namespace

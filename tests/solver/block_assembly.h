@@ -32,9 +32,12 @@ struct BlockAssembly {
   std::unique_ptr<NodalPressure> nodal;
   std::unique_ptr<ReducedAssembly> standard, with_nodal;
 
-  BlockAssembly() {
+  /// cells_per_2mm > 1: the refined block (block_mesh), e.g. 2 for 12,000 tets, more than one
+  /// assembly chunk.
+  explicit BlockAssembly(int cells_per_2mm = 1) {
     BlockModelOptions options;
     options.sliding_top = true;
+    options.cells_per_2mm = cells_per_2mm;
     model = block_model(options);  // mm-t-s: laws in MPa, lengths in mm
     // Tilt the sliding normals, so that the top nodes' bases are not coordinate axes.
     for (NodeSet& set : model.node_sets)

@@ -162,7 +162,8 @@ TEST_F(CholmodSolver, SameFactorForAnyOpenBlasThreadCountBeforeIt) {
   const auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
   const auto set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
   if (!get || !set) GTEST_SKIP() << "CHOLMOD's BLAS is not OpenBLAS";
-  if (std::getenv("OPENBLAS_NUM_THREADS")) GTEST_SKIP() << "OPENBLAS_NUM_THREADS is set: the solver keeps it";
+  if (const char* env = std::getenv("OPENBLAS_NUM_THREADS"); env && std::atoi(env) > 0)
+    GTEST_SKIP() << "OPENBLAS_NUM_THREADS is set: the solver keeps it";
   const int original = get();
   const SparseMatrix K = grid_matrix(24);  // 41,472 unknowns
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), 1.0, 2.0);
@@ -171,25 +172,27 @@ TEST_F(CholmodSolver, SameFactorForAnyOpenBlasThreadCountBeforeIt) {
   const auto solve = [&](int threads, bool after) {
     set(threads);
     SparseSpdSolver solver(LinearSolverKind::Cholmod);
+    EXPECT_EQ(get(), 1) << "the solver's own count";
     if (after) set(threads);
     Eigen::VectorXd x;
     EXPECT_TRUE(solver.solve(K, b, x, 0.0));
     EXPECT_EQ(solver.factorisations(), 1);
     return x;
   };
-  const Eigen::VectorXd forced_one = solve(1, true), forced_four = solve(4, true);
-  const Eigen::VectorXd one = solve(1, false), four = solve(4, false);
+  // Two threads, not more: the suite runs on 2-core machines, where more only wait.
+  const Eigen::VectorXd forced_one = solve(1, true), forced_two = solve(2, true);
+  const Eigen::VectorXd one = solve(1, false), two = solve(2, false);
   set(original);
-  // OpenBLAS's thread count does change the bits on this matrix, so the equality below is a real
-  // property (without the solver's fixed count, `one` would be `forced_one`).
-  EXPECT_NE(forced_one, forced_four);
   EXPECT_LT(relative_residual(K, one, b), kRelativeRoundoff);
-  ASSERT_EQ(one.size(), four.size());
+  ASSERT_EQ(one.size(), two.size());
   for (Eigen::Index i = 0; i < one.size(); ++i)
-    if (one[i] != four[i]) {
-      ADD_FAILURE() << "solutions after OpenBLAS thread counts 1 and 4 differ at unknown " << i;
+    if (one[i] != two[i]) {
+      ADD_FAILURE() << "solutions after OpenBLAS thread counts 1 and 2 differ at unknown " << i;
       break;
     }
+  // Only meaningful where the thread count does change the bits (it does with Debian 12's
+  // OpenBLAS 0.3.21 on this matrix); elsewhere the equality above proves nothing.
+  if (forced_one == forced_two) GTEST_SKIP() << "this OpenBLAS gives the same bits with 1 and 2 threads";
 }
 
 }  // namespace

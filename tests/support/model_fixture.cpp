@@ -35,12 +35,13 @@ TetMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int nx, i
   return mesh;
 }
 
-TetMesh block_mesh() {
-  TetMesh mesh = box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(20, 10, 10), 10, 5, 5);
-  // Six tets per 2 mm cell in cell order: the tissue follows the cell's x index.
+TetMesh block_mesh(int cells_per_2mm) {
+  const int r = cells_per_2mm;
+  TetMesh mesh = box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(20, 10, 10), 10 * r, 5 * r, 5 * r);
+  // Six tets per cell in cell order (x fastest): the tissue follows the cell's x position.
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-    const int i = static_cast<int>(t / 6) % 10;
-    mesh.tissue_ids[t] = i < 4 ? 1 : (i < 7 ? 2 : 3);
+    const int i = static_cast<int>(t / 6) % (10 * r);  // x index of the cell; 2 mm = r cells
+    mesh.tissue_ids[t] = i < 4 * r ? 1 : (i < 7 * r ? 2 : 3);
   }
   mesh.tissue_names = {"fat", "fgt", "tumor"};
   return mesh;
@@ -108,7 +109,8 @@ ModelSettings block_settings(const BlockModelOptions& options) {
 }
 
 Model block_model(const BlockModelOptions& options) {
-  return build_model(block_mesh(), block_settings(options), block_materials(options.ogden_tumor), "test fixture");
+  return build_model(block_mesh(options.cells_per_2mm), block_settings(options), block_materials(options.ogden_tumor),
+                     "test fixture");
 }
 
 std::string order_units_name(ElementOrder order, UnitSystem units) {

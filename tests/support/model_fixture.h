@@ -19,7 +19,9 @@ namespace tissuemesh::test {
 /// "tissue".
 TetMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int nx, int ny, int nz);
 
-TetMesh block_mesh();
+/// The block (see above); cells_per_2mm > 1 refines its grid, each 2 mm cell split into that many
+/// per direction (tissue boundaries stay at x = 8 and 14).
+TetMesh block_mesh(int cells_per_2mm = 1);
 
 /// A plane selection through grid nodes: they lie on it exactly, so a 1e-6 mm tolerance takes
 /// them all and nothing else.
@@ -29,6 +31,7 @@ struct BlockModelOptions {
   ElementOrder order = ElementOrder::Linear;
   bool ogden_tumor = false;        ///< tumor as 2-term Ogden instead of Mooney-Rivlin
   bool sliding_top = false;        ///< add a sliding set on the plane z = 10 (normal +z)
+  int cells_per_2mm = 1;           ///< grid refinement (block_mesh)
   UnitSystem units = UnitSystem::MillimetreTonneSecond;
 };
 
