@@ -154,6 +154,11 @@ bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess,
   Eigen::VectorXd R;
   double rnorm = 0.0, potential = 0.0, ref = 1.0;
   // Newton's start: trial, its forces and residual at q; false when an element inverts there.
+  // The convergence test of an increment (static_solver.h): residual norm against its reference,
+  // the last correction's norm against that of the unknowns.
+  auto meets_tolerances = [&](double r_norm, double r_ref, double step_norm, double q_norm) {
+    return r_norm <= s.residual_tolerance * r_ref && step_norm <= s.displacement_tolerance * q_norm;
+  };
   auto start_at = [&](const Eigen::VectorXd& q) {
     trial.q = q;
     trial.u = dofs.expand(trial.q, lambda);
@@ -240,9 +245,7 @@ bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess,
       const double na = Ra.norm();
       const double pa = a.energy - load.dot(ua);
       if (!std::isfinite(na) || !std::isfinite(pa)) continue;
-      if (alpha == 1.0 && expect_end &&
-          !(na <= s.residual_tolerance * residual_scale(load, a.f_int) &&
-            dq.norm() <= s.displacement_tolerance * q.norm())) {
+      if (alpha == 1.0 && expect_end && !meets_tolerances(na, residual_scale(load, a.f_int), dq.norm(), q.norm())) {
         ReducedAssembly::Result full = ctx.assemble(ua, true);  // the prediction missed
         if (!full.ok) {
           inverted_note = full.note;
@@ -275,8 +278,7 @@ bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess,
     ref = residual_scale(load, best.f_int);
     record.step_lengths.push_back(best_alpha);
     record.residual_norms.push_back(rnorm / ref);
-    const double dq_norm = best_alpha * dq.norm();
-    if (rnorm <= s.residual_tolerance * ref && dq_norm <= s.displacement_tolerance * trial.q.norm()) {
+    if (meets_tolerances(rnorm, ref, best_alpha * dq.norm(), trial.q.norm())) {
       trial.f_int = std::move(best.f_int);
       out = std::move(trial);
       return true;
