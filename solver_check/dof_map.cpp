@@ -124,4 +124,15 @@ Eigen::Vector3d DofMap::constrained_part(int v, const Eigen::Vector3d& f) const 
   return r;
 }
 
+std::vector<int> DofMap::node_groups() const {
+  std::vector<int> group(num_free_);
+  int g = 0;
+  for (int v = 0; v < num_nodes(); ++v) {
+    if (count_[v] == 0) continue;
+    for (int k = 0; k < count_[v]; ++k) group[first_[v] + k] = g;
+    ++g;
+  }
+  return group;
+}
+
 }  // namespace tissuemesh

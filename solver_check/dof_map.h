@@ -42,6 +42,9 @@ class DofMap {
   /// Nodes with count < 3 (fixed, sliding or prescribed), sorted.
   const std::vector<int>& constrained_nodes() const { return constrained_; }
 
+  /// Group of each reduced unknown: the index of its node among the nodes with count > 0 (0, 1, ...
+  /// in unknown order), for SparseSpdSolver's ordering of a node's unknowns together.
+  std::vector<int> node_groups() const;
   /// Global displacement (3 per node) of reduced unknowns q at load factor lambda.
   Eigen::VectorXd expand(const Eigen::VectorXd& q, double lambda) const;
   /// Reduced part B^T f of a global nodal vector f (3 per node).

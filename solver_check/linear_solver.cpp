@@ -15,6 +15,8 @@
 #include <cstdlib>
 #include <limits>
 #include <exception>
+#include <stdexcept>
+#include <string>
 
 namespace tissuemesh {
 
@@ -51,6 +53,64 @@ class CholmodLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double
     v.values = static_cast<double*>(L.x);
     v.perm = static_cast<const int*>(L.Perm);
     return v;
+  }
+  /// Symbolic analysis of K (lower triangle) with METIS nested dissection computed on the graph of
+  /// the unknowns' groups (`group`: SparseSpdSolver's constructor) instead of on K's own graph; each
+  /// group's unknowns stay together, in their order. False (nothing changed) when METIS fails.
+  bool analyse_grouped(const Eigen::SparseMatrix<double>& K, const std::vector<int>& group) {
+    cholmod_common& c = this->cholmod();
+    const int n = static_cast<int>(K.rows());
+    const int groups = n == 0 ? 0 : group.back() + 1;
+    std::vector<int> first(groups + 1, n);  // first unknown of each group
+    for (int j = n - 1; j >= 0; --j) first[group[j]] = j;
+    // Lower triangle of the group graph: group g's column holds the groups of every row of its
+    // unknowns' columns (all >= g, as groups do not decrease), sorted, without repeats.
+    std::vector<int> column_start(groups + 1, 0), row_groups, seen(groups, -1);
+    for (int g = 0; g < groups; ++g) {
+      const std::size_t start = row_groups.size();
+      for (int j = first[g]; j < first[g + 1]; ++j)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(K, j); it; ++it)
+          if (const int h = group[it.row()]; seen[h] != g) {
+            seen[h] = g;
+            row_groups.push_back(h);
+          }
+      std::sort(row_groups.begin() + static_cast<std::ptrdiff_t>(start), row_groups.end());
+      column_start[g + 1] = static_cast<int>(row_groups.size());
+    }
+    cholmod_sparse graph{};
+    graph.nrow = graph.ncol = static_cast<std::size_t>(groups);
+    graph.nzmax = row_groups.size();
+    graph.p = column_start.data();
+    graph.i = row_groups.data();
+    graph.stype = -1;  // symmetric, lower triangle stored
+    graph.itype = CHOLMOD_INT;
+    graph.xtype = CHOLMOD_PATTERN;
+    graph.dtype = CHOLMOD_DOUBLE;
+    graph.sorted = 1;
+    graph.packed = 1;
+    std::vector<int> group_order(groups), order;
+    // No postorder here: cholmod_analyze_p postorders the unknowns' elimination tree anyway.
+    if (!cholmod_metis(&graph, nullptr, 0, 0, group_order.data(), &c)) return false;
+    order.reserve(n);
+    for (int g : group_order)
+      for (int j = first[g]; j < first[g + 1]; ++j) order.push_back(j);
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_GIVEN;
+    cholmod_sparse A = Eigen::viewAsCholmod(K.selfadjointView<Eigen::Lower>());
+    cholmod_factor* L = cholmod_analyze_p(&A, order.data(), nullptr, 0, &c);
+    if (!L) return false;
+    if (m_cholmodFactor) cholmod_free_factor(&m_cholmodFactor, &c);
+    m_cholmodFactor = L;
+    this->m_isInitialized = true;
+    this->m_info = Eigen::Success;
+    m_analysisIsOk = true;
+    m_factorizationIsOk = false;
+    return true;
+  }
+  /// The fill-reducing permutation of the analysis: row k of L is unknown ordering()[k].
+  std::vector<int> ordering() const {
+    const int* perm = static_cast<const int*>(m_cholmodFactor->Perm);
+    return std::vector<int>(perm, perm + m_cholmodFactor->n);
   }
   /// True when factor() can be read: supernodal LL', real, int indices.
   bool factor_readable() const {
@@ -119,6 +179,9 @@ struct SparseSpdSolver::Impl {
 #endif
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
   bool analysed = false;
+  /// Group of each unknown (the constructor's `unknown_groups`; empty: no grouping).
+  std::vector<int> groups;
+  double analysis_seconds = 0.0;
   double factor_entries = 0.0, factor_flops = 0.0;
 
   Eigen::VectorXd apply_factor(const Eigen::VectorXd& r) {
@@ -176,7 +239,13 @@ struct SparseSpdSolver::Impl {
         for (int i = 0; i < 3; ++i) c.nrelax[i] *= 2;
         c.zrelax[1] *= 2;
         c.zrelax[2] *= 2;
-        cholmod.analyzePattern(K);
+        const auto start = std::chrono::steady_clock::now();
+        if (groups.empty() || !cholmod.analyse_grouped(K, groups)) {
+          // CHOLMOD's own choice: AMD, and METIS when AMD's fill is high (nmethods 0).
+          c.nmethods = 0;
+          cholmod.analyzePattern(K);
+        }
+        analysis_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         factor_entries = c.lnz;
         factor_flops = c.fl;
         analysed = true;
@@ -268,8 +337,16 @@ struct SparseSpdSolver::Impl {
   }
 };
 
-SparseSpdSolver::SparseSpdSolver(LinearSolverKind kind, int threads) : impl_(std::make_unique<Impl>()) {
+SparseSpdSolver::SparseSpdSolver(LinearSolverKind kind, int threads, std::vector<int> unknown_groups)
+    : impl_(std::make_unique<Impl>()) {
   impl_->threads = std::max(1, threads);
+  for (std::size_t j = 0; j < unknown_groups.size(); ++j) {
+    const int previous = j == 0 ? -1 : unknown_groups[j - 1];
+    if (unknown_groups[j] != previous && unknown_groups[j] != previous + 1)
+      throw std::invalid_argument("SparseSpdSolver: unknown groups must be numbered 0, 1, ... without gaps or "
+                                  "decreases (unknown " + std::to_string(j) + ")");
+  }
+  impl_->groups = std::move(unknown_groups);
   if (kind == LinearSolverKind::Cholmod && !cholmod_available())
     throw SolverError("linear solver CHOLMOD requested, but this build has no CHOLMOD (install libsuitesparse-dev "
                       "and rebuild)");
@@ -283,6 +360,14 @@ SparseSpdSolver::~SparseSpdSolver() = default;
 
 double SparseSpdSolver::factor_entries() const { return impl_->factor_entries; }
 double SparseSpdSolver::factor_flops() const { return impl_->factor_flops; }
+double SparseSpdSolver::analysis_seconds() const { return impl_->analysis_seconds; }
+
+std::vector<int> SparseSpdSolver::ordering() const {
+#ifdef TISSUEMESH_HAVE_CHOLMOD
+  if (impl_->use_cholmod && impl_->analysed) return impl_->cholmod.ordering();
+#endif
+  return {};
+}
 
 std::string SparseSpdSolver::preconditioner() const {
   switch (impl_->applied) {
@@ -317,8 +402,10 @@ bool SparseSpdSolver::solve(const SparseMatrix& K, const Eigen::VectorXd& b, Eig
   }
   // 2. A new factorisation.
   const auto start = std::chrono::steady_clock::now();
+  const double analysed_before = impl_->analysis_seconds;
   const bool factorised = impl_->factorise(K, known_indefinite, proven_shift, shifted_, failed_);
-  factorisation_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  factorisation_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+                            (impl_->analysis_seconds - analysed_before);
   if (!factorised) return false;
   ++factorisations_;
   // 3. The direct solve; with a shifted factor (K is not positive definite) the damped step.

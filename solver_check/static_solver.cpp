@@ -314,7 +314,7 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   const AnalysisSettings& s = model.analysis;
   ReducedAssembly assembly(model.order, model.elements, problem.geometry, problem.law, dofs, options.threads,
                            problem.nodal.get());
-  SparseSpdSolver linear(options.linear_solver, assembly.threads());
+  SparseSpdSolver linear(options.linear_solver, assembly.threads(), dofs.node_groups());
   Context ctx{problem, dofs, s, assembly, linear};
 
   SolveResult result;
@@ -401,6 +401,7 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   result.linear_iterations = linear.iterations();
   result.cg_preconditioner = linear.preconditioner();
   result.factorisation_seconds = linear.factorisation_seconds();
+  result.analysis_seconds = linear.analysis_seconds();
   result.factor_entries = linear.factor_entries();
   result.factor_flops = linear.factor_flops();
   if (result.converged) {

@@ -2,16 +2,20 @@
 // requested residual, and the shifted (damped) step for a tangent that is not positive definite:
 // which shift, how many attempts, and the attempts it saves (skipped unshifted try and rungs
 // below the shift CG's direction of negative curvature proves too small, ladder started at the
-// last working shift), and the same factor whatever OpenBLAS's thread count.
+// last working shift), the same factor whatever OpenBLAS's thread count, and the ordering of a
+// node's unknowns together (DofMap::node_groups).
 #include "solver_check/linear_solver.h"
 
+#include "block_assembly.h"
 #include "support/tolerances.h"
 
 #include <gtest/gtest.h>
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <stdexcept>
 #include <vector>
 
 namespace tissuemesh {
@@ -193,6 +197,49 @@ TEST_F(CholmodSolver, SameFactorForAnyOpenBlasThreadCountBeforeIt) {
   // Only meaningful where the thread count does change the bits (it does with Debian 12's
   // OpenBLAS 0.3.21 on this matrix); elsewhere the equality above proves nothing.
   if (forced_one == forced_two) GTEST_SKIP() << "this OpenBLAS gives the same bits with 1 and 2 threads";
+}
+
+TEST_F(CholmodSolver, OrdersEachNodesUnknownsTogether) {
+  // The block model's tangent: free nodes (3 unknowns), sliding ones (2) and fixed ones (none).
+  test::BlockAssembly block;
+  const DofMap& dofs = *block.dofs;
+  // At the reference configuration, where the tangent is positive definite.
+  ASSERT_TRUE(block.standard->assemble(Eigen::VectorXd::Zero(3 * dofs.num_nodes()), true).ok);
+  const SparseMatrix& K = block.standard->tangent();
+  const std::vector<int> groups = dofs.node_groups();
+  ASSERT_EQ(static_cast<int>(groups.size()), dofs.num_free());
+  int sliding = 0;
+  for (int v = 0; v < dofs.num_nodes(); ++v) {
+    sliding += dofs.count(v) == 2;
+    for (int k = 0; k < dofs.count(v); ++k) EXPECT_EQ(groups[dofs.first(v) + k], groups[dofs.first(v)]);
+  }
+  ASSERT_GT(sliding, 0) << "the fixture should have sliding nodes";
+
+  SparseSpdSolver solver(LinearSolverKind::Cholmod, 1, groups);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), 1.0, 2.0);
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.solve(K, b, x, 0.0));
+  EXPECT_EQ(solver.shifted_factorisations(), 0);
+  EXPECT_LT(relative_residual(K, x, b), kRelativeRoundoff);
+  // Every group's unknowns follow each other in the factor, in their own order.
+  const std::vector<int> order = solver.ordering();
+  ASSERT_EQ(order.size(), groups.size());
+  for (std::size_t k = 0; k < order.size();) {
+    const int g = groups[order[k]];
+    ASSERT_TRUE(order[k] == 0 || groups[order[k] - 1] != g) << "group " << g << " does not start at its first unknown";
+    std::size_t next = k + 1;
+    for (; next < order.size() && groups[order[next]] == g; ++next) ASSERT_EQ(order[next], order[next - 1] + 1);
+    const std::size_t size = static_cast<std::size_t>(std::count(groups.begin(), groups.end(), g));
+    ASSERT_EQ(next - k, size) << "group " << g << " is split";
+    k = next;
+  }
+}
+
+TEST(LinearSolverGroups, RefusesGroupsNotNumberedInOrder) {
+  EXPECT_THROW(SparseSpdSolver(LinearSolverKind::Auto, 1, {1, 1}), std::invalid_argument);
+  EXPECT_THROW(SparseSpdSolver(LinearSolverKind::Auto, 1, {0, 2}), std::invalid_argument);
+  EXPECT_THROW(SparseSpdSolver(LinearSolverKind::Auto, 1, {0, 1, 0}), std::invalid_argument);
+  EXPECT_NO_THROW(SparseSpdSolver(LinearSolverKind::Auto, 1, {0, 0, 1, 2, 2}));
 }
 
 }  // namespace
