@@ -109,6 +109,7 @@ nlohmann::json solver_json(const SolveResult& r) {
           {"shifted_factorisations", r.shifted_factorisations},
           {"failed_factorisations", r.failed_factorisations},
           {"preconditioned_cg_iterations", r.linear_iterations},
+          {"lowest_eigenvalue_iterations", r.eigenvalue_iterations},
           {"cg_preconditioner", r.cg_preconditioner},
           {"tangent_assemblies", r.tangent_assemblies},
           {"force_assemblies", r.force_assemblies},

@@ -14,18 +14,22 @@
 // (solver_check/single_precision_factor.h: half the bytes to stream, two subtrees at once; on the
 // benchmark model 4.2 ms per application instead of ~10 ms); the direct solves use the factor itself. The answer is the same up to the requested relative residual ||K x - b|| <= rtol ||b||
 // (the Newton loop's inexactness), except for a K that is not positive definite (below).
-//   Cholmod         CHOLMOD supernodal Cholesky (Eigen::CholmodSupernodalLLT; CHOLMOD's own
-//                   AMD/METIS choice, supernodes amalgamated twice as coarsely as its default;
-//                   BLAS-3 on supernodes). A K that is not positive definite (soft tissue in
-//                   compression, far from equilibrium: CG met negative curvature, or CHOLMOD
-//                   found a non-positive pivot) is factorised with a diagonal shift
-//                   sigma * mean|K_ii|, sigma on the ladder 1e-8, 1e-6, ... 1e-2, and that
-//                   factor's solution is the step (a damped, energy-descending step as in
-//                   Levenberg-Marquardt). The ladder starts where it succeeded last (each failed
-//                   rung costs up to a factorisation) and skips the rungs below -p^T K p / p^T p
-//                   for CG's direction p of negative curvature, which K + s I cannot survive
-//                   (on the demo: 3 failed attempts instead of 5, 0.7 s less); a shifted factor
-//                   is not kept as the next preconditioner.
+//   Cholmod         CHOLMOD supernodal Cholesky (Eigen::CholmodSupernodalLLT; METIS on the
+//                   graph of the unknown groups when given, else CHOLMOD's own AMD/METIS choice;
+//                   supernodes amalgamated twice as coarsely as its default; BLAS-3 on
+//                   supernodes). A K that is not positive definite (soft tissue in compression,
+//                   far from equilibrium: CG met negative curvature, or CHOLMOD found a
+//                   non-positive pivot) is factorised with a diagonal shift, and that factor's
+//                   solution is the step (a damped, energy-descending step as in
+//                   Levenberg-Marquardt). When CG met negative curvature along p, a few LOBPCG
+//                   iterations from p (preconditioned by the kept factor) estimate K's lowest
+//                   eigenvalue lambda_min, and the shift is 5 |lambda_min| (the estimate's Rayleigh
+//                   quotient); if that fails, or without an estimate, the shift is
+//                   sigma * mean|K_ii|, sigma on the ladder 1e-8, 1e-6, ... 1e-2. The ladder
+//                   starts where it succeeded last (each failed rung costs up to a factorisation)
+//                   and skips the rungs that must fail: below -p^T K p / p^T p, which K + s I
+//                   cannot survive, or at most a shift that failed. A shifted factor is not kept
+//                   as the next preconditioner.
 //   SimplicialLDLT  Eigen's sparse LDL^T (AMD ordering); copes with an indefinite K directly.
 // solve() returns false (never throws) when nothing gives a finite solution.
 #pragma once
@@ -70,6 +74,8 @@ class SparseSpdSolver {
   /// not counted in factorisations(), but in factorisation_seconds().
   int failed_factorisations() const { return failed_; }
   int iterations() const { return iterations_; }
+  /// LOBPCG iterations spent estimating the lowest eigenvalue of tangents CG proved indefinite.
+  int eigenvalue_iterations() const { return eigenvalue_iterations_; }
   /// What CG was preconditioned with, e.g. "the kept factorisation in single precision, 2 threads"
   /// (whichever was used last; "none" before any CG iteration).
   std::string preconditioner() const;
@@ -96,6 +102,7 @@ class SparseSpdSolver {
   int shifted_ = 0;
   int failed_ = 0;
   int iterations_ = 0;
+  int eigenvalue_iterations_ = 0;
   double factorisation_seconds_ = 0.0;
 };
 

@@ -399,6 +399,7 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   result.shifted_factorisations = linear.shifted_factorisations();
   result.failed_factorisations = linear.failed_factorisations();
   result.linear_iterations = linear.iterations();
+  result.eigenvalue_iterations = linear.eigenvalue_iterations();
   result.cg_preconditioner = linear.preconditioner();
   result.factorisation_seconds = linear.factorisation_seconds();
   result.analysis_seconds = linear.analysis_seconds();

@@ -138,6 +138,7 @@ struct SolveResult {
   int shifted_factorisations = 0; ///< of them, with a diagonal shift (tangent not positive definite)
   int failed_factorisations = 0;  ///< attempts given up (not positive definite), not in the above
   int linear_iterations = 0;      ///< preconditioned CG iterations on kept factorisations
+  int eigenvalue_iterations = 0;  ///< LOBPCG iterations estimating indefinite tangents' lowest eigenvalue
   std::string cg_preconditioner;  ///< SparseSpdSolver::preconditioner()
   double assembly_seconds = 0.0;  ///< wall time in element evaluation and assembly
   /// Assemblies of force and tangent (each Newton direction needs one at its start point, so at

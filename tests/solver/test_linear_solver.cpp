@@ -14,6 +14,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 #include <vector>
@@ -108,14 +109,58 @@ TEST_F(CholmodSolver, NegativeCurvatureInConjugateGradientsSkipsTheUnshiftedTry)
   ASSERT_TRUE(solver.solve(matrix(3.0, 1.0), b, x, 1e-4));
   ASSERT_EQ(solver.failed_factorisations(), 0);
   // The kept factor maps b to itself, and b^T K b = -0.01: CG's first direction proves K
-  // indefinite, and K + s I too for any s below 0.01 (b^T b = 1). So neither the unshifted try nor
-  // the rungs 1e-8, 1e-6 and 1e-4 (times mean|K_ii| = 2.94) are attempted: nothing fails.
+  // indefinite, and K + s I too for any s below 0.01 (b^T b = 1). b is also K's lowest
+  // eigenvector (eigenvalue -0.01), so the eigenvalue estimate is exact at once, and the shift is
+  // the documented 5 x 0.01 (linear_solver.h): no unshifted try, no ladder rung, nothing fails.
   const SparseMatrix K = matrix(3.0, -0.01);
   ASSERT_TRUE(solver.solve(K, b, x, 1e-4));
   EXPECT_EQ(solver.failed_factorisations(), 0);
   EXPECT_EQ(solver.shifted_factorisations(), 1);
-  const double expected = 1.0 / (-0.01 + 1e-2 * K.diagonal().cwiseAbs().mean());
+  EXPECT_EQ(solver.eigenvalue_iterations(), 0);
+  const double expected = 1.0 / (-0.01 + 5.0 * 0.01);
   EXPECT_NEAR(x[kSize - 1], expected, kRelativeRoundoff * expected);
+}
+
+/// Lower triangle of the 1D Laplacian (2, -1) on kSize unknowns minus c I: eigenvalues
+/// 2 - c - 2 cos(k pi / (kSize + 1)), k = 1 .. kSize, every eigenvector spread over all unknowns.
+SparseMatrix laplacian(double c) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < kSize; ++i) {
+    entries.emplace_back(i, i, 2.0 - c);
+    if (i + 1 < kSize) entries.emplace_back(i + 1, i, -1.0);
+  }
+  SparseMatrix K(kSize, kSize);
+  K.setFromTriplets(entries.begin(), entries.end());
+  return K;
+}
+
+// A coupled negative mode: CG's direction of negative curvature is not the eigenvector, so LOBPCG
+// has to iterate. The shift must lie between |lambda_min| (K + s I positive definite) and the
+// documented 5 |lambda_min|; the ladder's rungs (1e-4 x mean|K_ii| = 2e-4 fails, 1e-2 x 2 = 0.02
+// works, 20 |lambda_min|) would miss that window.
+TEST_F(CholmodSolver, CoupledNegativeModeIsShiftedByItsEstimatedEigenvalue) {
+  const double pi = std::acos(-1.0);
+  const double c = 0.005;
+  const double lowest = 2.0 - c - 2.0 * std::cos(pi / (kSize + 1));  // -0.00105
+  const double second = 2.0 - c - 2.0 * std::cos(2.0 * pi / (kSize + 1));
+  ASSERT_LT(lowest, 0.0);
+  ASSERT_GT(second, 0.0);  // one negative eigenvalue
+  SparseSpdSolver solver(LinearSolverKind::Cholmod);
+  const Eigen::VectorXd b = ramp();
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.solve(laplacian(-0.1), b, x, 1e-4));  // positive definite: the kept factor
+  const SparseMatrix K = laplacian(c);
+  ASSERT_TRUE(solver.solve(K, b, x, 1e-4));
+  EXPECT_EQ(solver.failed_factorisations(), 0);
+  EXPECT_EQ(solver.shifted_factorisations(), 1);
+  EXPECT_GT(solver.eigenvalue_iterations(), 0);
+  // The shift s from the damped step: (K + s I) x = b.
+  const Eigen::VectorXd Kx = K.selfadjointView<Eigen::Lower>() * x;
+  const double s = (b - Kx).dot(x) / x.squaredNorm();
+  EXPECT_GT(s, -lowest);
+  EXPECT_LE(s, 5.0 * -lowest * (1.0 + kRelativeRoundoff));
+  EXPECT_LT((Kx + s * x - b).norm(), kRelativeRoundoff * b.norm() / (s + lowest));
+  EXPECT_GT(b.dot(x), 0.0);  // a descent direction of the energy whose gradient is -b
 }
 
 // The factor of the tridiagonal K (49 unknowns) plus a decoupled one has no fill with a
