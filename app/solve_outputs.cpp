@@ -116,6 +116,7 @@ nlohmann::json solver_json(const SolveResult& r) {
           {"assembly_seconds", r.assembly_seconds},
           {"linear_solve_seconds", r.linear_solve_seconds},
           {"factorisation_seconds", r.factorisation_seconds},
+          {"numeric_factorisation", r.numeric_factorisation},
           {"analysis_seconds", r.analysis_seconds},
           {"factor_entries", r.factor_entries},
           {"factor_flops", r.factor_flops},

@@ -20,6 +20,7 @@ PACKAGES=(
   libsuitesparse-dev                            # CHOLMOD: the built-in solver's sparse Cholesky
   libopenblas0-pthread                          # optimised BLAS for CHOLMOD's supernodes (the
                                                 #   reference BLAS is ~3x slower on the tet10 block)
+  liblapack-dev libblas-dev                     # the solver's own supernodal factorisation links them
   libgtest-dev libgmock-dev                     # test suites
 )
 

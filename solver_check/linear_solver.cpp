@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "solver_check/single_precision_factor.h"
+#include "solver_check/supernodal_cholesky.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
@@ -127,6 +128,17 @@ class CholmodLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double
     const int* perm = static_cast<const int*>(m_cholmodFactor->Perm);
     return std::vector<int>(perm, perm + m_cholmodFactor->n);
   }
+  /// Gives the analysed (symbolic) factor its numeric storage, for SupernodalCholesky to fill;
+  /// false when CHOLMOD refuses (out of memory) or the result is not readable by factor().
+  bool allocate_values() {
+    return cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, m_cholmodFactor, &this->cholmod()) && factor_readable();
+  }
+  /// Marks the factor as factorised by SupernodalCholesky (ok), or failed, as factorize() would.
+  void set_factorised(bool ok) {
+    m_cholmodFactor->minor = ok ? m_cholmodFactor->n : 0;
+    m_factorizationIsOk = true;
+    this->m_info = ok ? Eigen::Success : Eigen::NumericalIssue;
+  }
   /// True when factor() can be read: supernodal LL', real, int indices.
   bool factor_readable() const {
     const cholmod_factor* L = m_cholmodFactor;
@@ -191,6 +203,9 @@ struct SparseSpdSolver::Impl {
   /// The kept exact factorisation in single precision (in cholmod's own storage): CG's
   /// preconditioner (empty: use cholmod).
   SinglePrecisionFactor preconditioner;
+  /// The numeric factorisation into cholmod's factor on two threads (empty: cholmod's own, when
+  /// the factor's layout was refused).
+  SupernodalCholesky numeric;
 #endif
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
   bool analysed = false;
@@ -233,6 +248,21 @@ struct SparseSpdSolver::Impl {
     z = apply_factor(r);
   }
 
+#ifdef TISSUEMESH_HAVE_CHOLMOD
+  /// The numeric factorisation of K + shift I into cholmod's factor: by `numeric` when planned,
+  /// else by CHOLMOD. True when positive definite.
+  bool factorise_shifted(const SparseMatrix& K, double shift) {
+    if (!numeric.empty()) {
+      const bool ok = numeric.factorise(K, shift, threads);
+      cholmod.set_factorised(ok);
+      return ok;
+    }
+    cholmod.setShift(shift);
+    cholmod.factorize(K);
+    return cholmod.info() == Eigen::Success;
+  }
+#endif
+
   /// What CG found out about an indefinite K before a factorisation.
   struct Indefiniteness {
     bool known = false;            ///< CG met negative curvature: the unshifted attempt is skipped
@@ -266,15 +296,20 @@ struct SparseSpdSolver::Impl {
           c.nmethods = 0;
           cholmod.analyzePattern(K);
         }
+        // The numeric factorisations on two threads (supernodal_cholesky.h); CHOLMOD's own if its
+        // layout is refused.
+        try {
+          if (cholmod.allocate_values()) numeric.plan(cholmod.factor(), K);
+        } catch (const std::exception&) {
+          numeric = SupernodalCholesky();
+        }
         analysis_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         factor_entries = c.lnz;
         factor_flops = c.fl;
         analysed = true;
       }
       if (!indefinite.known) {
-        cholmod.setShift(0.0);
-        cholmod.factorize(K);
-        if (cholmod.info() == Eigen::Success) {
+        if (factorise_shifted(K, 0.0)) {
           if (!last_shifted) sigma_start = std::max(kMinShift, sigma_start / kShiftFactor);
           last_shifted = false;
           return exact_factor = true;
@@ -284,9 +319,7 @@ struct SparseSpdSolver::Impl {
       double must_fail = indefinite.proven_shift;  // shifts up to this fail
       if (indefinite.estimated_shift > 0.0) {
         const double shift = std::max(kEstimateMargin * indefinite.estimated_shift, indefinite.proven_shift);
-        cholmod.setShift(shift);
-        cholmod.factorize(K);
-        if (cholmod.info() == Eigen::Success) {
+        if (factorise_shifted(K, shift)) {
           ++shifted;
           last_shifted = true;
           return true;
@@ -297,9 +330,7 @@ struct SparseSpdSolver::Impl {
       const double mean_diagonal = K.diagonal().cwiseAbs().mean();
       for (double sigma = sigma_start; sigma <= kMaxShift * (1.0 + 1e-9); sigma *= kShiftFactor) {
         if (sigma * mean_diagonal <= must_fail) continue;
-        cholmod.setShift(sigma * mean_diagonal);
-        cholmod.factorize(K);
-        if (cholmod.info() == Eigen::Success) {
+        if (factorise_shifted(K, sigma * mean_diagonal)) {
           ++shifted;
           sigma_start = sigma;
           last_shifted = true;
@@ -462,6 +493,19 @@ std::string SparseSpdSolver::preconditioner() const {
       break;
   }
   return "none";
+}
+
+std::string SparseSpdSolver::numeric_factorisation() const {
+  if (!impl_->analysed) return "none";
+#ifdef TISSUEMESH_HAVE_CHOLMOD
+  if (impl_->use_cholmod && !impl_->numeric.empty()) {
+    if (impl_->threads == 1) return "SupernodalCholesky, 1 thread";
+    const int top = static_cast<int>(std::lround(100.0 * impl_->numeric.top_share()));
+    return "SupernodalCholesky, 2 threads (the top separators, " + std::to_string(top) + " % of the flops, on one)";
+  }
+  if (impl_->use_cholmod) return "CHOLMOD";
+#endif
+  return "Eigen";
 }
 
 std::string SparseSpdSolver::name() const {

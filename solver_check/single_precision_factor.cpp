@@ -14,11 +14,6 @@ namespace {
 using BlockMap = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>;
 using VectorMap = Eigen::Map<Eigen::VectorXf>;
 
-/// Opening stops when the larger bin holds at most this much more than half the bins' entries
-/// (closer balance than the two threads' noise buys nothing), or after this many steps.
-constexpr double kBalance = 1.05;
-constexpr int kMaxOpened = 256;
-
 }  // namespace
 
 void SinglePrecisionFactor::assign(const SupernodalFactorView& f) {
@@ -38,108 +33,30 @@ void SinglePrecisionFactor::assign(const SupernodalFactorView& f) {
 }
 
 void SinglePrecisionFactor::plan(const SupernodalFactorView& f) {
-  auto refuse = [](const std::string& what) { throw std::invalid_argument("supernodal factor: " + what); };
+  const std::vector<int> parent = supernode_parents(f);  // every check
   const int ns = f.nsuper;
-  if (f.n <= 0 || ns <= 0 || f.super[0] != 0 || f.super[ns] != f.n || f.pi[0] != 0 || f.px[0] != 0)
-    refuse("the supernodes do not cover the columns 0.." + std::to_string(f.n - 1));
   n_ = f.n;
   super_.assign(f.super, f.super + ns + 1);
   pi_.assign(f.pi, f.pi + ns + 1);
   px_.assign(f.px, f.px + ns + 1);
   rows_ = f.rows;
   perm_.resize(n_);
-  std::vector<char> seen(n_, 0);
-  for (int k = 0; k < n_; ++k) {
-    perm_[k] = f.perm ? f.perm[k] : k;
-    if (perm_[k] < 0 || perm_[k] >= n_ || seen[perm_[k]]++) refuse("the permutation is not one of 0.." + std::to_string(n_ - 1));
-  }
-  std::vector<int> col_super(n_, -1);  // the supernode of each column
+  for (int k = 0; k < n_; ++k) perm_[k] = f.perm ? f.perm[k] : k;
+  // A solve's work: the entries it streams.
+  std::vector<double> entries(ns);
   std::size_t widest = 0;
-  for (int s = 0; s < ns; ++s) {
-    const int nscol = super_[s + 1] - super_[s], nsrow = pi_[s + 1] - pi_[s];
-    if (nscol <= 0 || nsrow < nscol || px_[s + 1] - px_[s] < static_cast<std::int64_t>(nsrow) * nscol)
-      refuse("supernode " + std::to_string(s) + " has an inconsistent block");
-    for (int i = 0; i < nsrow; ++i) {
-      const int r = rows_[pi_[s] + i];
-      if (i < nscol ? r != super_[s] + i : r < super_[s + 1] || r >= n_)
-        refuse("supernode " + std::to_string(s) + " has row " + std::to_string(r) + " at position " + std::to_string(i));
-    }
-    for (int j = 0; j < nscol; ++j) col_super[super_[s] + j] = s;
-    widest = std::max(widest, static_cast<std::size_t>(nsrow));
-  }
-
-  // The elimination tree of the supernodes: a supernode's parent holds its first off-diagonal row.
-  std::vector<int> parent(ns, -1), first(ns), count(ns, 1);
-  std::vector<double> work(ns);
-  std::vector<std::vector<int>> children(ns);
-  std::iota(first.begin(), first.end(), 0);
   double total = 0.0;
   for (int s = 0; s < ns; ++s) {
-    const int nscol = super_[s + 1] - super_[s], nsrow = pi_[s + 1] - pi_[s];
-    work[s] += static_cast<double>(nsrow) * nscol;
-    total += static_cast<double>(nsrow) * nscol;
-    if (nsrow > nscol) parent[s] = col_super[rows_[pi_[s] + nscol]];
-    if (parent[s] >= 0) {
-      if (parent[s] <= s) refuse("the elimination tree is not ordered");
-      children[parent[s]].push_back(s);
-      work[parent[s]] += work[s];  // work[s] is complete: all of s's descendants come before s
-      first[parent[s]] = std::min(first[parent[s]], first[s]);
-      count[parent[s]] += count[s];
-    }
+    const int nsrow = pi_[s + 1] - pi_[s];
+    entries[s] = static_cast<double>(nsrow) * (super_[s + 1] - super_[s]);
+    total += entries[s];
+    widest = std::max(widest, static_cast<std::size_t>(nsrow));
   }
-  // Subtrees are contiguous ranges only in a postordered tree (CHOLMOD's default); otherwise no split.
-  bool postordered = true;
-  for (int s = 0; s < ns; ++s) postordered = postordered && count[s] == s - first[s] + 1;
-
-  // Open up the largest subtree (its root joins the top) step by step; after each step the open
-  // subtrees go largest-first into the lighter of two bins. The split kept is the step with the
-  // least estimated time, top + larger bin (a nested-dissection tree often starts with a chain of
-  // separator supernodes that must all be opened before it branches).
-  std::vector<int> open;
-  for (int s = 0; s < ns; ++s)
-    if (parent[s] < 0) open.push_back(s);
-  double top_work = 0.0, best_time = total;
-  auto by_work = [&](int a, int b) { return work[a] > work[b] || (work[a] == work[b] && a < b); };
-  std::array<std::vector<int>, 2> assigned;
-  for (int opened = 0; postordered && !open.empty() && opened <= kMaxOpened; ++opened) {
-    std::sort(open.begin(), open.end(), by_work);
-    std::array<double, 2> load{0.0, 0.0};
-    std::array<std::vector<int>, 2> bins;
-    for (int s : open) {
-      const int b = load[1] < load[0] ? 1 : 0;
-      load[b] += work[s];
-      bins[b].push_back(s);
-    }
-    const double time = top_work + std::max(load[0], load[1]);
-    if (!bins[1].empty() && time < best_time) {
-      best_time = time;
-      assigned = bins;
-    }
-    const int largest = open.front();
-    if (children[largest].empty() || std::max(load[0], load[1]) <= kBalance * 0.5 * (load[0] + load[1])) break;
-    top_work += work[largest] - std::accumulate(children[largest].begin(), children[largest].end(), 0.0,
-                                                [&](double sum, int c) { return sum + work[c]; });
-    if (top_work >= best_time) break;  // no later step can beat the best
-    open.erase(open.begin());
-    open.insert(open.end(), children[largest].begin(), children[largest].end());
-  }
-  // Supernodes in no bin are the top part, solved in increasing order.
-  std::vector<char> in_bin(ns, 0);
-  for (int b = 0; b < 2; ++b) {
-    bins_[b].clear();
-    for (int root : assigned[b]) {
-      bins_[b].push_back({first[root], root});
-      std::fill(in_bin.begin() + first[root], in_bin.begin() + root + 1, 1);
-    }
-    std::sort(bins_[b].begin(), bins_[b].end(), [](const Subtree& a, const Subtree& c) { return a.first < c.first; });
-  }
-  top_.clear();
+  const TreeSplit split = split_tree(parent, entries);
+  bins_ = split.bins;
+  top_ = split.top;
   double top_entries = 0.0;
-  for (int s = 0; s < ns; ++s)
-    if (!in_bin[s]) {
-      top_.push_back(s);
-      top_entries += static_cast<double>(pi_[s + 1] - pi_[s]) * (super_[s + 1] - super_[s]);
-    }
+  for (int s : top_) top_entries += entries[s];
   top_share_ = total > 0.0 ? top_entries / total : 1.0;
 
   y_.assign(n_, 0.0f);
@@ -189,7 +106,7 @@ void SinglePrecisionFactor::solve(const Eigen::VectorXd& r, Eigen::VectorXd& z, 
   if (split) {
 #pragma omp parallel for num_threads(threads) schedule(static, 1)
     for (int b = 0; b < 2; ++b)
-      for (const Subtree& t : bins_[b])
+      for (const SubtreeRange& t : bins_[b])
         for (int s = t.first; s <= t.last; ++s) forward(s, y, outside_[b].data(), t.first, t.last, scratch_[b]);
     for (int s : top_)
       for (int k = super_[s]; k < super_[s + 1]; ++k) {

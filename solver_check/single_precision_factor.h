@@ -15,10 +15,7 @@
 // the factor's (measured on the benchmark model: a separate float copy raised the peak by 43 MiB,
 // 257 -> 300 MiB); the factor's double values are gone until it is factorised again.
 //
-// Factor layout (CHOLMOD's supernodal LL', read through SupernodalFactorView): A = P^T L L^T P;
-// supernode s holds columns super[s] .. super[s+1]-1 of L as a dense column-major block of
-// nsrow = pi[s+1] - pi[s] rows (row indices rows[pi[s]] ..., the first nscol of them the
-// supernode's own columns) at values[px[s]]; its diagonal block is lower triangular.
+// Factor layout: solver_check/supernodal_tree.h.
 //
 // Threads: the tree is split once per factor (assign) into two bins of subtrees of about equal
 // size and a top part (the separators above them) solved by one thread. Each bin accumulates its
@@ -27,6 +24,8 @@
 // bins one after the other). Not thread-safe: one solve at a time per object.
 #pragma once
 
+#include "solver_check/supernodal_tree.h"
+
 #include <Eigen/Core>
 
 #include <array>
@@ -34,19 +33,6 @@
 #include <vector>
 
 namespace tissuemesh {
-
-/// Arrays of a supernodal LL' factor of an n x n matrix (the layout of the header comment).
-/// SinglePrecisionFactor::assign() overwrites `values` and keeps pointers to `values` and `rows`.
-struct SupernodalFactorView {
-  int n = 0;
-  int nsuper = 0;
-  const int* super = nullptr;        ///< nsuper + 1 first columns
-  const int* pi = nullptr;           ///< nsuper + 1 offsets into rows
-  const int* px = nullptr;           ///< nsuper + 1 offsets into values
-  const int* rows = nullptr;         ///< row indices of the supernodes' blocks
-  double* values = nullptr;          ///< the blocks, column-major
-  const int* perm = nullptr;         ///< perm[k]: the original index of row k of L (nullptr: identity)
-};
 
 class SinglePrecisionFactor {
  public:
@@ -68,9 +54,6 @@ class SinglePrecisionFactor {
   double top_share() const { return top_share_; }
 
  private:
-  struct Subtree {
-    int first, last;  ///< supernodes first .. last (postorder: a subtree is a contiguous range)
-  };
   /// assign() without the conversion: every check, the tree split and the work vectors.
   void plan(const SupernodalFactorView& factor);
   void forward(int s, float* y, float* outside, int first, int last, std::vector<float>& scratch) const;
@@ -82,7 +65,7 @@ class SinglePrecisionFactor {
   const float* values_ = nullptr;  ///< borrowed: the factor's array, converted
   std::vector<std::int64_t> px_;
   std::vector<int> perm_;
-  std::array<std::vector<Subtree>, 2> bins_;
+  std::array<std::vector<SubtreeRange>, 2> bins_;
   std::vector<int> top_;  ///< supernodes above the bins, increasing
   double top_share_ = 1.0;
   // Work vectors, kept between solves.

@@ -400,6 +400,7 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   result.failed_factorisations = linear.failed_factorisations();
   result.linear_iterations = linear.iterations();
   result.eigenvalue_iterations = linear.eigenvalue_iterations();
+  result.numeric_factorisation = linear.numeric_factorisation();
   result.cg_preconditioner = linear.preconditioner();
   result.factorisation_seconds = linear.factorisation_seconds();
   result.analysis_seconds = linear.analysis_seconds();

@@ -132,6 +132,7 @@ struct SolveResult {
   int total_iterations = 0;
   int free_dofs = 0;              ///< unknowns after constraints
   std::string linear_solver;      ///< "CHOLMOD supernodal LLT" or "Eigen SimplicialLDLT"
+  std::string numeric_factorisation;  ///< SparseSpdSolver::numeric_factorisation()
   std::string formulation;       ///< formulation_name(model)
   int threads = 1;                ///< assembly threads used
   int factorisations = 0;         ///< numeric factorisations of the tangent

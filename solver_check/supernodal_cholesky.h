@@ -1,0 +1,86 @@
+// SupernodalCholesky: the numeric Cholesky factorisation of the built-in solver's tangent (issue
+// #4), into the supernodal factor that CHOLMOD's symbolic analysis laid out
+// (solver_check/supernodal_tree.h), with the two bins of the elimination tree factorised on two
+// threads at the same time.
+//
+// Why: CHOLMOD's numeric factorisation works through the supernodes one after the other, and its
+// BLAS runs on one thread (linear_solver.h: more BLAS threads change the last bits with their
+// count and stall on a busy machine). A nested-dissection ordering's tree splits below its top
+// separators into independent subtrees; here two threads factorise them at once, each calling
+// BLAS on one thread, and the top follows on one thread.
+//
+// Algorithm (right-looking supernodal): a supernode whose block holds A's entries less the updates
+// of all its descendants is factorised (dpotrf on its diagonal block, dtrsm below it) and sends its
+// update L_below L_mine^T (dsyrk, dgemm) to every ancestor its rows reach, in the order of its
+// rows. The updates go straight into the ancestor's block (only one thread touches a bin's
+// supernodes), except bin 1's updates of top supernodes: they go into a buffer, added to the top's
+// blocks once both bins are done (bin 0 writes there meanwhile). Every entry thus receives the same
+// operations in the same order whatever the thread count: the factor depends on A and the shift
+// only (one thread does bin 0, bin 1, then the top).
+//
+// Memory: the factor's own values (written in place) plus, when the tree splits, a buffer of the
+// top supernodes' blocks, the largest update per thread, and the map from K's entries to the
+// factor's (one int per entry). On the 60K-tet benchmark model: 2.5M doubles for the top in a
+// factor of 11.4M (CHOLMOD's blocks, upper triangles of the diagonal blocks included).
+#pragma once
+
+#include "solver_check/supernodal_tree.h"
+
+#include <Eigen/SparseCore>
+
+#include <cstdint>
+#include <vector>
+
+namespace tissuemesh {
+
+class SupernodalCholesky {
+ public:
+  /// Plans the factorisation of matrices with K's pattern (lower triangle, compressed, original
+  /// numbering: row k of L is unknown perm[k]) into the factor `factor` (its arrays must stay as
+  /// they are while this object is used; `values` is overwritten by factorise()). Throws
+  /// std::invalid_argument, before changing anything, for an inconsistent view (supernode_parents),
+  /// a block whose rows below its own columns do not increase, a K that is not square of the
+  /// factor's size or not compressed, or an entry of K outside the factor's pattern.
+  void plan(const SupernodalFactorView& factor, const Eigen::SparseMatrix<double>& K);
+  bool empty() const { return n_ == 0; }
+
+  /// Overwrites the factor's values with the Cholesky factor of P (K + shift I) P^T, on `threads`
+  /// threads (1 or 2 are used; the same bits for any count). K must have the planned pattern.
+  /// Returns false when that matrix is not positive definite (a pivot not positive and finite); the
+  /// values are then meaningless.
+  bool factorise(const Eigen::SparseMatrix<double>& K, double shift, int threads);
+
+  /// Share of the estimated flops in the top part (done by one thread), in [0, 1].
+  double top_share() const { return top_share_; }
+
+ private:
+  /// Supernode d's update of supernode `target`: its rows at positions first .. last - 1 are the
+  /// target's columns.
+  struct Send {
+    int target, first, last;
+  };
+  /// Factorises supernode s (its block complete) and sends its updates; `bin` is s's bin, or -1
+  /// for the top (updates of top supernodes from a bin go to that bin's buffer). False when s's
+  /// diagonal block is not positive definite.
+  bool eliminate(int s, int bin, std::vector<double>& product, std::vector<int>& position);
+
+  int n_ = 0, nsuper_ = 0;
+  const int* super_ = nullptr;
+  const int* pi_ = nullptr;
+  const int* px_ = nullptr;
+  const int* rows_ = nullptr;
+  double* values_ = nullptr;
+  std::vector<int> destination_;           ///< of each of K's entries in values_
+  std::vector<int> diagonal_;              ///< of each diagonal entry in values_
+  std::vector<int> send_start_;            ///< nsuper + 1 offsets into sends_
+  std::vector<Send> sends_;
+  std::vector<int> bin_;                   ///< of each supernode: 0, 1, or -1 for the top
+  TreeSplit split_;
+  std::vector<std::int64_t> top_offset_;   ///< of each top supernode's block in the buffers
+  std::vector<double> buffer_;             ///< bin 1's updates of top blocks
+  std::vector<double> product_[2];         ///< work space for an update, per thread
+  std::vector<int> position_[2];           ///< row positions in the target, per thread
+  double top_share_ = 1.0;
+};
+
+}  // namespace tissuemesh

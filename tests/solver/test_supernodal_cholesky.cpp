@@ -1,0 +1,124 @@
+// SupernodalCholesky (solver_check/supernodal_cholesky.h): the factor of small supernodal
+// structures against Eigen's dense Cholesky, with and without a diagonal shift, bit for bit the same
+// on one and two threads; a matrix that is not positive definite; refusal of matrices that do not
+// fit the factor's pattern.
+#include "solver_check/supernodal_cholesky.h"
+
+#include "supernodal_fixture.h"
+#include "support/tolerances.h"
+
+#include <Eigen/SparseCore>
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace tissuemesh {
+namespace {
+
+using test::kRelativeRoundoff;
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+/// The lower triangle of the factor's matrix A (original numbering), its nonzeros only.
+SparseMatrix lower(const Eigen::MatrixXd& A) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int j = 0; j < A.cols(); ++j)
+    for (int i = j; i < A.rows(); ++i)
+      if (A(i, j) != 0.0) entries.emplace_back(i, j, A(i, j));
+  SparseMatrix K(A.rows(), A.cols());
+  K.setFromTriplets(entries.begin(), entries.end());
+  return K;
+}
+
+/// The supernodal blocks of the dense factor of B (B's row/column k = A's perm[k]) in f's layout.
+std::vector<double> blocks_of(const test::Factor& f, const Eigen::MatrixXd& B) {
+  const Eigen::MatrixXd L = B.llt().matrixL();
+  std::vector<double> values;
+  for (std::size_t s = 0; s + 1 < f.super.size(); ++s)
+    for (int k = f.super[s]; k < f.super[s + 1]; ++k)
+      for (int p = f.pi[s]; p < f.pi[s + 1]; ++p) values.push_back(L(f.rows[p], k));
+  return values;
+}
+
+/// Factorises f's matrix plus shift I on 1 and 2 threads: the blocks of the dense factor to
+/// round-off, the same bits on both counts.
+void expect_factor(test::Factor f, double shift) {
+  const SparseMatrix K = lower(f.A);
+  const int n = static_cast<int>(f.A.rows());
+  Eigen::MatrixXd B(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) B(i, j) = f.A(f.perm[i], f.perm[j]);
+  B.diagonal().array() += shift;
+  const std::vector<double> expected = blocks_of(f, B);
+  SupernodalCholesky cholesky;
+  cholesky.plan(f.view(), K);
+  ASSERT_TRUE(cholesky.factorise(K, shift, 1));
+  const std::vector<double> one = f.values;
+  ASSERT_TRUE(cholesky.factorise(K, shift, 2));
+  EXPECT_EQ(f.values, one);  // bitwise: the same on any thread count
+  ASSERT_EQ(one.size(), expected.size());
+  for (std::size_t i = 0; i < one.size(); ++i)
+    EXPECT_NEAR(one[i], expected[i], kRelativeRoundoff * std::abs(expected[i]) + kRelativeRoundoff) << "entry " << i;
+}
+
+TEST(SupernodalCholesky, FactorisesAnArrowSplitBelowItsSeparator) {
+  expect_factor(test::arrow(), 0.0);
+  expect_factor(test::arrow(), 0.75);
+}
+
+TEST(SupernodalCholesky, FactorisesATwoLevelTreeWithUpdatesInsideABinAndIntoTheTop) {
+  SupernodalCholesky planned;
+  test::Factor f = test::two_levels();
+  planned.plan(f.view(), lower(f.A));
+  EXPECT_LT(planned.top_share(), 0.5);  // split: the bins hold most of the work
+  expect_factor(test::two_levels(), 0.0);
+  expect_factor(test::two_levels(), 2.5);
+}
+
+TEST(SupernodalCholesky, FactorisesAChainOnOneThread) {
+  const Eigen::MatrixXd B = test::coupled(7, {{1, 0}, {6, 2}, {5, 3}});
+  test::Factor f(B, {0, 7}, {0, 1, 2, 3, 4, 5, 6});
+  SupernodalCholesky planned;
+  planned.plan(f.view(), lower(f.A));
+  EXPECT_EQ(planned.top_share(), 1.0);  // one supernode: nothing to split
+  expect_factor(f, 0.0);
+}
+
+TEST(SupernodalCholesky, ReportsAMatrixThatIsNotPositiveDefinite) {
+  // coupled()'s diagonal is 8 .. 11.5 with off-diagonals of at most 1: a shift of -10 leaves
+  // negative pivots in both bins and the top.
+  test::Factor f = test::two_levels();
+  const SparseMatrix K = lower(f.A);
+  SupernodalCholesky cholesky;
+  cholesky.plan(f.view(), K);
+  EXPECT_FALSE(cholesky.factorise(K, -10.0, 2));
+  EXPECT_FALSE(cholesky.factorise(K, -10.0, 1));
+  EXPECT_TRUE(cholesky.factorise(K, 0.0, 2));  // and it recovers on the next matrix
+}
+
+TEST(SupernodalCholesky, RefusesAMatrixThatDoesNotFitTheFactor) {
+  test::Factor f = test::arrow();
+  const std::vector<double> before = f.values;
+  auto refused = [&](const SparseMatrix& K) {
+    SupernodalCholesky cholesky;
+    EXPECT_THROW(cholesky.plan(f.view(), K), std::invalid_argument);
+    EXPECT_TRUE(cholesky.empty());
+    EXPECT_EQ(f.values, before);
+  };
+  // B's unknowns 3 (leaf {3,4}) and 0 (leaf {0,1,2}) are in different subtrees: no entry of L
+  // couples them. A's numbering: perm[3] = 2, perm[0] = 4.
+  SparseMatrix outside = lower(f.A);
+  outside.coeffRef(4, 2) = 0.1;
+  outside.makeCompressed();
+  refused(outside);
+  SparseMatrix upper = lower(f.A).transpose();
+  upper.makeCompressed();
+  refused(upper);
+  refused(SparseMatrix(6, 6));
+  SparseMatrix uncompressed = lower(f.A);
+  uncompressed.uncompress();
+  refused(uncompressed);
+}
+
+}  // namespace
+}  // namespace tissuemesh
