@@ -27,26 +27,28 @@ class UncoupledMooneyRivlin : public HyperelasticLaw {
   Eigen::Matrix3d pk2(const Eigen::Matrix3d& C) const override {
     const Invariants v(C);
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-    return 2.0 * c10_ * v.j23 * (I - v.I1 / 3.0 * v.Ci) +
-           2.0 * c01_ * v.j43 * (v.I1 * I - C - 2.0 / 3.0 * v.I2 * v.Ci) + k_ * v.J * (v.J - 1.0) * v.Ci;
+    Eigen::Matrix3d S = 2.0 * c10_ * v.j23 * (I - v.I1 / 3.0 * v.Ci) + k_ * v.J * (v.J - 1.0) * v.Ci;
+    if (c01_ != 0.0) S += 2.0 * c01_ * v.j43 * (v.I1 * I - C - 2.0 / 3.0 * v.I2 * v.Ci);
+    return S;
   }
   Tangent6 tangent(const Eigen::Matrix3d& C) const override {
     using tensor4::outer;
     using tensor4::sym_product;
     const Invariants v(C);
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-    const Tangent6 CiCi = outer(v.Ci, v.Ci), Isym = sym_product(I), Ci_sym = sym_product(v.Ci);
+    const Tangent6 CiCi = outer(v.Ci, v.Ci), Ci_sym = sym_product(v.Ci);
     // 2 d/dC of 2 C10 J^-2/3 (I - I1/3 C^-1)
     const Tangent6 t1 = 4.0 * c10_ * v.j23 *
                         (-1.0 / 3.0 * outer(I, v.Ci) - 1.0 / 3.0 * outer(v.Ci, I) + v.I1 / 9.0 * CiCi +
                          v.I1 / 3.0 * Ci_sym);
+    // 2 d/dC of K (J^2 - J) C^-1
+    const Tangent6 t3 = k_ * ((2.0 * v.J - 1.0) * v.J * CiCi - 2.0 * (v.J * v.J - v.J) * Ci_sym);
+    if (c01_ == 0.0) return t1 + t3;  // neo-Hookean: the C01 term is zero (the assembly's hot path)
     // 2 d/dC of 2 C01 J^-4/3 (I1 I - C - 2/3 I2 C^-1)
     const Eigen::Matrix3d B = v.I1 * I - C - 2.0 / 3.0 * v.I2 * v.Ci;
     const Tangent6 t2 = 4.0 * c01_ * v.j43 *
-                        (-2.0 / 3.0 * outer(B, v.Ci) + outer(I, I) - Isym - 2.0 / 3.0 * outer(v.Ci, v.I1 * I - C) +
-                         2.0 / 3.0 * v.I2 * Ci_sym);
-    // 2 d/dC of K (J^2 - J) C^-1
-    const Tangent6 t3 = k_ * ((2.0 * v.J - 1.0) * v.J * CiCi - 2.0 * (v.J * v.J - v.J) * Ci_sym);
+                        (-2.0 / 3.0 * outer(B, v.Ci) + outer(I, I) - sym_product(I) -
+                         2.0 / 3.0 * outer(v.Ci, v.I1 * I - C) + 2.0 / 3.0 * v.I2 * Ci_sym);
     return t1 + t2 + t3;
   }
   Volumetric volumetric(double J) const override {
