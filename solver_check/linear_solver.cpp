@@ -76,7 +76,8 @@ class CholmodLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double
   bool analyse_grouped(const Eigen::SparseMatrix<double>& K, const std::vector<int>& group) {
     cholmod_common& c = this->cholmod();
     const int n = static_cast<int>(K.rows());
-    const int groups = n == 0 ? 0 : group.back() + 1;
+    if (static_cast<int>(group.size()) != n || n == 0) return false;
+    const int groups = group.back() + 1;
     std::vector<int> first(groups + 1, n);  // first unknown of each group
     for (int j = n - 1; j >= 0; --j) first[group[j]] = j;
     // Lower triangle of the group graph: group g's column holds the groups of every row of its
@@ -164,6 +165,12 @@ class CholmodLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double
 /// threads (set the variable). The function is looked up at run time, so another BLAS is left
 /// alone.
 constexpr int kBlasThreads = 1;
+/// OpenBLAS's thread count (1 for another BLAS, where the call runs on the caller's thread).
+int blas_threads() {
+  using Get = int (*)();
+  const auto get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  return get ? get() : 1;
+}
 void fix_blas_threads() {
   if (const char* env = std::getenv("OPENBLAS_NUM_THREADS"); env && std::atoi(env) > 0) return;
   using Set = void (*)(int);
@@ -253,7 +260,9 @@ struct SparseSpdSolver::Impl {
   /// else by CHOLMOD. True when positive definite.
   bool factorise_shifted(const SparseMatrix& K, double shift) {
     if (!numeric.empty()) {
-      const bool ok = numeric.factorise(K, shift, threads);
+      // Two threads calling a multithreaded OpenBLAS at once are serialised or worse
+      // ($OPENBLAS_NUM_THREADS > 1): then the bins run one after the other (the same bits).
+      const bool ok = numeric.factorise(K, shift, blas_threads() > 1 ? 1 : threads);
       cholmod.set_factorised(ok);
       return ok;
     }
@@ -358,48 +367,64 @@ struct SparseSpdSolver::Impl {
   /// (Knyazev 2001) from x (x^T K x < 0), preconditioned like CG: each iteration minimises the
   /// Rayleigh quotient over span{x, T r, previous direction}, r = K x - rho x, T the kept factor,
   /// at the cost of one multiplication by K and one preconditioner application (like a CG
-  /// iteration). Stops when rho changes by at most kEigenChange x |rho|, r is small (1e-2 |rho|)
-  /// or after kMaxEigenIterations. rho >= lambda_min always (a Rayleigh quotient).
+  /// iteration). The basis is orthonormalised (modified Gram-Schmidt; a direction that is nearly in
+  /// the span of the others is dropped), so the small eigenproblem stays well conditioned. Stops when
+  /// rho changes by at most kEigenChange x |rho|, r is small (1e-2 |rho|) or after
+  /// kMaxEigenIterations. Returns x^T K x / x^T x for the best x met, recomputed with a fresh
+  /// multiplication: a Rayleigh quotient, so >= lambda_min up to round-off.
   double lowest_eigenvalue(const SparseMatrix& K, Eigen::VectorXd x, int& iterations) {
     const auto A = K.selfadjointView<Eigen::Lower>();
     x.normalize();
-    Eigen::VectorXd Ax = A * x, p, Ap, w, r;
-    double rho = x.dot(Ax);
+    Eigen::VectorXd Ax = A * x, p, Ap, w, r, best = x;
+    double rho = x.dot(Ax), best_rho = rho;
     for (int it = 0; it < kMaxEigenIterations; ++it) {
       r = Ax - rho * x;
       if (r.norm() <= 1e-2 * std::abs(rho)) break;
       ++iterations;
       precondition(r, w);
-      w.normalize();
-      const int m = p.size() > 0 ? 3 : 2;  // the basis {x, w, p}
-      Eigen::MatrixXd S(x.size(), m), AS(x.size(), m);
+      // Orthonormal basis of {x, w, p} with K times each column (K applied once, to w).
+      Eigen::MatrixXd S(x.size(), 3), AS(x.size(), 3);
       S.col(0) = x;
       AS.col(0) = Ax;
-      S.col(1) = w;
-      AS.col(1) = A * w;
-      if (m == 3) {
-        const double norm = p.norm();
-        S.col(2) = p / norm;
-        AS.col(2) = Ap / norm;
-      }
-      // Rayleigh-Ritz on the basis: the lowest eigenpair of (S^T K S) y = theta (S^T S) y.
-      const Eigen::MatrixXd gram_k = 0.5 * (S.transpose() * AS + AS.transpose() * S);
-      const Eigen::MatrixXd gram = S.transpose() * S;
-      Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ritz(gram_k, gram);
-      if (ritz.info() != Eigen::Success || !ritz.eigenvectors().allFinite()) break;  // basis (nearly) dependent
+      int m = 1;
+      const auto add = [&](const Eigen::VectorXd& v, const Eigen::VectorXd& Av) {
+        Eigen::VectorXd u = v, Au = Av;
+        const double size = v.norm();
+        for (int j = 0; j < m; ++j) {
+          const double c = S.col(j).dot(u);
+          u -= c * S.col(j);
+          Au -= c * AS.col(j);
+        }
+        const double rest = u.norm();
+        if (!(rest > 1e-8 * size)) return;  // (nearly) in the span already, or not finite
+        S.col(m) = u / rest;
+        AS.col(m) = Au / rest;
+        ++m;
+      };
+      add(w, A * w);
+      if (p.size() > 0) add(p, Ap);
+      if (m == 1) break;
+      // Rayleigh-Ritz: the lowest eigenpair of S^T K S (symmetrised against round-off).
+      const Eigen::MatrixXd G = S.leftCols(m).transpose() * AS.leftCols(m);
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ritz(0.5 * (G + G.transpose()));
+      if (ritz.info() != Eigen::Success || !ritz.eigenvectors().allFinite()) break;
       const Eigen::VectorXd y = ritz.eigenvectors().col(0);
-      p = S.rightCols(m - 1) * y.tail(m - 1);
-      Ap = AS.rightCols(m - 1) * y.tail(m - 1);
-      x = S * y;
-      Ax = AS * y;
+      p = S.middleCols(1, m - 1) * y.tail(m - 1);
+      Ap = AS.middleCols(1, m - 1) * y.tail(m - 1);
+      x = S.leftCols(m) * y;
+      Ax = AS.leftCols(m) * y;
       const double norm = x.norm();
       x /= norm;
       Ax /= norm;
       const double previous = rho;
       rho = x.dot(Ax);
+      if (rho < best_rho) {
+        best_rho = rho;
+        best = x;
+      }
       if (std::abs(rho - previous) <= kEigenChange * std::abs(rho)) break;
     }
-    return rho;
+    return best.dot(A * best) / best.squaredNorm();
   }
 
   enum class CgOutcome { Converged, NegativeCurvature, NotConverged };
@@ -499,7 +524,8 @@ std::string SparseSpdSolver::numeric_factorisation() const {
   if (!impl_->analysed) return "none";
 #ifdef TISSUEMESH_HAVE_CHOLMOD
   if (impl_->use_cholmod && !impl_->numeric.empty()) {
-    if (impl_->threads == 1) return "SupernodalCholesky, 1 thread";
+    if (impl_->numeric.top_share() >= 1.0) return "SupernodalCholesky, 1 thread (the tree does not split)";
+    if (impl_->threads == 1 || blas_threads() > 1) return "SupernodalCholesky, 1 thread";
     const int top = static_cast<int>(std::lround(100.0 * impl_->numeric.top_share()));
     return "SupernodalCholesky, 2 threads (the top separators, " + std::to_string(top) + " % of the flops, on one)";
   }

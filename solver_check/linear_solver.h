@@ -20,15 +20,16 @@
 //                   and solves; the numeric factorisations into its factor are
 //                   SupernodalCholesky's (supernodal_cholesky.h: two subtrees on two threads;
 //                   CHOLMOD's own if the factor's layout is refused). Measured on the 60K-tet
-//                   benchmark model: 5 factorisations 0.74-0.85 s instead of 1.71-1.85 s with
+//                   benchmark model: 5 factorisations 0.74-0.89 s instead of 1.71-1.85 s with
 //                   CHOLMOD's, the same Newton path. A K that is not positive definite (soft tissue in compression,
 //                   far from equilibrium: CG met negative curvature, or CHOLMOD found a
 //                   non-positive pivot) is factorised with a diagonal shift, and that factor's
 //                   solution is the step (a damped, energy-descending step as in
 //                   Levenberg-Marquardt). When CG met negative curvature along p, a few LOBPCG
 //                   iterations from p (preconditioned by the kept factor) estimate K's lowest
-//                   eigenvalue lambda_min, and the shift is 5 |lambda_min| (the estimate's Rayleigh
-//                   quotient); if that fails, or without an estimate, the shift is
+//                   eigenvalue lambda_min, and the shift is 5 |rho| (rho: the estimate's Rayleigh
+//                   quotient, |rho| <= |lambda_min|; at least CG's proven bound below); if that
+//                   fails, or without an estimate, the shift is
 //                   sigma * mean|K_ii|, sigma on the ladder 1e-8, 1e-6, ... 1e-2. The ladder
 //                   starts where it succeeded last (each failed rung costs up to a factorisation)
 //                   and skips the rungs that must fail: below -p^T K p / p^T p, which K + s I
@@ -55,7 +56,7 @@ class SparseSpdSolver {
   /// node's unknowns: DofMap::node_groups()), else std::invalid_argument. With CHOLMOD the
   /// fill-reducing ordering is then METIS nested dissection on the graph of the groups, each
   /// group's unknowns kept together (a supervariable). Measured on the 60K-tet benchmark model
-  /// (41,541 unknowns in 14,xxx nodes): analysis 0.16 s instead of 0.24-0.28 s (CHOLMOD's own choice,
+  /// (41,541 unknowns): analysis 0.15-0.16 s instead of 0.24-0.28 s (CHOLMOD's own choice,
   /// METIS on the unknowns' graph: 9x the edges), 3.83 instead of 4.16 GFlop per factorisation
   /// (7.73M instead of 7.96M factor entries). Without groups, or if METIS fails: CHOLMOD's own choice.
   /// `threads`: for the preconditioner's triangular solves. With CHOLMOD on OpenBLAS, sets
@@ -77,7 +78,7 @@ class SparseSpdSolver {
   std::string numeric_factorisation() const;
   int factorisations() const { return factorisations_; }
   int shifted_factorisations() const { return shifted_; }
-  /// Factorisation attempts CHOLMOD gave up on (K or a too small shift not positive definite);
+  /// Factorisation attempts that found K (or K + a too small shift) not positive definite;
   /// not counted in factorisations(), but in factorisation_seconds().
   int failed_factorisations() const { return failed_; }
   int iterations() const { return iterations_; }
@@ -89,7 +90,8 @@ class SparseSpdSolver {
   /// The fill-reducing permutation (row k of the factor is unknown ordering()[k]); empty before
   /// the first factorisation and for SimplicialLDLT.
   std::vector<int> ordering() const;
-  /// Wall time of the symbolic analysis (ordering included), once per solver.
+  /// Wall time of the symbolic analysis (ordering included) and of planning the numeric
+  /// factorisations, once per solver.
   double analysis_seconds() const;
   /// Wall time spent in numeric factorisations (including failed attempts; not the analysis).
   double factorisation_seconds() const { return factorisation_seconds_; }

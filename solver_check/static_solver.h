@@ -149,7 +149,7 @@ struct SolveResult {
   int force_assemblies = 0;
   double linear_solve_seconds = 0.0;  ///< wall time in factorisation and solves
   double factorisation_seconds = 0.0; ///< of it, in numeric factorisations
-  double analysis_seconds = 0.0;  ///< of it, in the one symbolic analysis (fill-reducing ordering)
+  double analysis_seconds = 0.0;  ///< of it, in the one symbolic analysis (ordering) and its planning
   double factor_entries = 0.0;    ///< entries of the tangent's factor (SparseSpdSolver::factor_entries)
   double factor_flops = 0.0;      ///< flops of one factorisation (SparseSpdSolver::factor_flops; 0 = unknown)
   double seconds = 0.0;           ///< wall time of the solve

@@ -8,8 +8,9 @@
 #include <string>
 
 // BLAS and LAPACK (Fortran interface; the trailing arguments are the hidden lengths of the
-// character arguments). Debian links them to OpenBLAS, which runs on one thread here
-// (linear_solver.cpp), so two threads may call them at once.
+// character arguments). Debian links them to OpenBLAS. Two threads call them at once only when
+// OpenBLAS runs each call on the caller's thread (one BLAS thread, linear_solver.cpp's default;
+// the caller passes threads = 1 otherwise).
 extern "C" {
 void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info, std::size_t);
 void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
@@ -81,6 +82,15 @@ void SupernodalCholesky::plan(const SupernodalFactorView& f, const Eigen::Sparse
       const int target = col_super[f.rows[f.pi[d] + i]];
       int last = i;
       while (last < nsrow && f.rows[f.pi[d] + last] < f.super[target + 1]) ++last;
+      // The rows below must be rows of the target too (eliminate() finds their positions there).
+      const int* trows = f.rows + f.pi[target];
+      for (int r = last, at = f.super[target + 1] - f.super[target]; r < nsrow; ++r) {
+        const int row = f.rows[f.pi[d] + r];
+        while (at < f.pi[target + 1] - f.pi[target] && trows[at] < row) ++at;
+        if (at == f.pi[target + 1] - f.pi[target] || trows[at] != row)
+          refuse("row " + std::to_string(row) + " of supernode " + std::to_string(d) + " is not a row of supernode " +
+                 std::to_string(target));
+      }
       next.sends_.push_back({target, i, last});
       const double m = nsrow - i, w = last - i;
       work[d] += w * w * k + 2.0 * (m - w) * w * k;
@@ -93,6 +103,11 @@ void SupernodalCholesky::plan(const SupernodalFactorView& f, const Eigen::Sparse
   next.bin_.assign(ns, -1);
   for (int b = 0; b < 2; ++b)
     for (const SubtreeRange& t : next.split_.bins[b]) std::fill(next.bin_.begin() + t.first, next.bin_.begin() + t.last + 1, b);
+  // A bin's supernodes update only their own bin or the top (what keeps the two threads apart).
+  for (int d = 0; d < ns; ++d)
+    for (int q = next.send_start_[d]; q < next.send_start_[d + 1]; ++q)
+      if (const int t = next.sends_[q].target; next.bin_[t] != next.bin_[d] && next.bin_[t] != -1)
+        refuse("supernode " + std::to_string(d) + " updates supernode " + std::to_string(t) + " of the other bin");
   double total = 0.0, top = 0.0;
   for (int s = 0; s < ns; ++s) total += work[s];
   next.top_offset_.assign(ns, -1);
@@ -110,6 +125,8 @@ void SupernodalCholesky::plan(const SupernodalFactorView& f, const Eigen::Sparse
   }
   for (int b = 0; b < 2; ++b) next.position_[b].resize(widest);
   if (next.split_.split()) next.buffer_.resize(static_cast<std::size_t>(top_size));
+  next.outer_.assign(K.outerIndexPtr(), K.outerIndexPtr() + n + 1);
+  next.inner_.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
   next.n_ = n;
   next.nsuper_ = ns;
   next.super_ = f.super;
@@ -161,7 +178,11 @@ bool SupernodalCholesky::eliminate(int s, int bin, std::vector<double>& product,
 }
 
 bool SupernodalCholesky::factorise(const Eigen::SparseMatrix<double>& K, double shift, int threads) {
-  if (empty() || static_cast<std::size_t>(K.nonZeros()) != destination_.size()) return false;
+  if (empty() || K.rows() != n_ || K.cols() != n_ || !K.isCompressed() ||
+      static_cast<std::size_t>(K.nonZeros()) != inner_.size() ||
+      !std::equal(outer_.begin(), outer_.end(), K.outerIndexPtr()) ||
+      !std::equal(inner_.begin(), inner_.end(), K.innerIndexPtr()))
+    throw std::invalid_argument("supernodal Cholesky: the matrix does not have the planned pattern");
   const bool split = split_.split();
   const int nt = split ? std::clamp(threads, 1, 2) : 1;
   const std::int64_t size = px_[nsuper_];

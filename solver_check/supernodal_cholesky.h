@@ -39,15 +39,17 @@ class SupernodalCholesky {
   /// numbering: row k of L is unknown perm[k]) into the factor `factor` (its arrays must stay as
   /// they are while this object is used; `values` is overwritten by factorise()). Throws
   /// std::invalid_argument, before changing anything, for an inconsistent view (supernode_parents),
-  /// a block whose rows below its own columns do not increase, a K that is not square of the
-  /// factor's size or not compressed, or an entry of K outside the factor's pattern.
+  /// a block whose rows below its own columns do not increase or are not all rows of the ancestor
+  /// they update, a K that is not square of the factor's size or not compressed, or an entry of K
+  /// outside the factor's pattern.
   void plan(const SupernodalFactorView& factor, const Eigen::SparseMatrix<double>& K);
   bool empty() const { return n_ == 0; }
 
   /// Overwrites the factor's values with the Cholesky factor of P (K + shift I) P^T, on `threads`
-  /// threads (1 or 2 are used; the same bits for any count). K must have the planned pattern.
-  /// Returns false when that matrix is not positive definite (a pivot not positive and finite); the
-  /// values are then meaningless.
+  /// threads (1 or 2 are used; the same bits for any count). Returns false when that matrix is not
+  /// positive definite (a pivot not positive and finite); the values are then meaningless. Throws
+  /// std::invalid_argument when nothing was planned or K's pattern is not the planned one. BLAS
+  /// must run on one thread per call when `threads` > 1 (see the .cpp).
   bool factorise(const Eigen::SparseMatrix<double>& K, double shift, int threads);
 
   /// Share of the estimated flops in the top part (done by one thread), in [0, 1].
@@ -70,6 +72,7 @@ class SupernodalCholesky {
   const int* px_ = nullptr;
   const int* rows_ = nullptr;
   double* values_ = nullptr;
+  std::vector<int> outer_, inner_;         ///< K's planned pattern
   std::vector<int> destination_;           ///< of each of K's entries in values_
   std::vector<int> diagonal_;              ///< of each diagonal entry in values_
   std::vector<int> send_start_;            ///< nsuper + 1 offsets into sends_

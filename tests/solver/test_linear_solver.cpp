@@ -244,6 +244,33 @@ TEST_F(CholmodSolver, SameFactorForAnyOpenBlasThreadCountBeforeIt) {
   if (forced_one == forced_two) GTEST_SKIP() << "this OpenBLAS gives the same bits with 1 and 2 threads";
 }
 
+TEST_F(CholmodSolver, FactorisesTwoSubtreesAtOnceWithTheSameBitsAsOneThread) {
+  if (const char* env = std::getenv("OPENBLAS_NUM_THREADS"); env && std::atoi(env) > 1)
+    GTEST_SKIP() << "OPENBLAS_NUM_THREADS > 1: the factorisation runs on one thread";
+  const SparseMatrix K = grid_matrix(12);  // 5,184 unknowns, 3 per grid node
+  std::vector<int> nodes(K.rows());
+  for (int j = 0; j < K.rows(); ++j) nodes[j] = j / 3;
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), 1.0, 2.0);
+  const auto solve = [&](int threads) {
+    SparseSpdSolver solver(LinearSolverKind::Cholmod, threads, nodes);
+    Eigen::VectorXd x;
+    EXPECT_TRUE(solver.solve(K, b, x, 0.0));
+    EXPECT_EQ(solver.numeric_factorisation().rfind(threads == 2 ? "SupernodalCholesky, 2 threads (the top"
+                                                                : "SupernodalCholesky, 1 thread", 0),
+              0u)
+        << solver.numeric_factorisation();
+    return x;
+  };
+  const Eigen::VectorXd two = solve(2), one = solve(1);
+  EXPECT_LT(relative_residual(K, two, b), kRelativeRoundoff);
+  EXPECT_TRUE(two == one) << "the factor's bits depend on the thread count";
+  // Against an independent factorisation (Eigen's SimplicialLDLT, AMD ordering).
+  SparseSpdSolver ldlt(LinearSolverKind::SimplicialLDLT);
+  Eigen::VectorXd reference;
+  ASSERT_TRUE(ldlt.solve(K, b, reference, 0.0));
+  EXPECT_LT((two - reference).norm(), kRelativeRoundoff * reference.norm());
+}
+
 TEST_F(CholmodSolver, OrdersEachNodesUnknownsTogether) {
   // The block model's tangent: free nodes (3 unknowns), sliding ones (2) and fixed ones (none).
   test::BlockAssembly block;

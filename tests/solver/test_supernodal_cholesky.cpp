@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace tissuemesh {
@@ -118,6 +119,45 @@ TEST(SupernodalCholesky, RefusesAMatrixThatDoesNotFitTheFactor) {
   SparseMatrix uncompressed = lower(f.A);
   uncompressed.uncompress();
   refused(uncompressed);
+}
+
+TEST(SupernodalCholesky, RefusesABlockWhoseRowsAreNotRowsOfTheAncestorItUpdates) {
+  // two_levels(): supernode {0,1,2} has rows 0,1,2,6,13 and updates {6}, whose rows are 6,13,14.
+  // With {6}'s rows 6,8,14 instead (and B's coupling (13,6) dropped, so K fits that pattern), the
+  // update's row 13 has no place in {6}'s block.
+  test::Factor f = test::two_levels();
+  ASSERT_EQ(f.rows[f.pi[2] + 1], 13);
+  f.rows[f.pi[2] + 1] = 8;
+  Eigen::MatrixXd A = f.A;
+  A(f.perm[13], f.perm[6]) = A(f.perm[6], f.perm[13]) = 0.0;
+  SupernodalCholesky cholesky;
+  try {
+    cholesky.plan(f.view(), lower(A));
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("row 13 of supernode 0 is not a row of supernode 2"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(cholesky.empty());
+}
+
+TEST(SupernodalCholesky, RefusesToFactoriseAMatrixOfAnotherPattern) {
+  test::Factor f = test::arrow();
+  const SparseMatrix K = lower(f.A);
+  SupernodalCholesky cholesky;
+  EXPECT_THROW(cholesky.factorise(K, 0.0, 1), std::invalid_argument);  // nothing planned
+  cholesky.plan(f.view(), K);
+  SparseMatrix other = K;
+  other.coeffRef(4, 2) = 0.1;  // one entry more (outside L's pattern, see above)
+  other.makeCompressed();
+  EXPECT_THROW(cholesky.factorise(other, 0.0, 1), std::invalid_argument);
+  SparseMatrix same_count = K;  // one entry moved: (6, 0) of A's diagonal neighbourhood dropped, (4, 2) added
+  same_count.coeffRef(4, 2) = 0.1;
+  same_count.prune([](Eigen::Index i, Eigen::Index j, double) { return !(i == 6 && j == 6); });
+  same_count.makeCompressed();
+  ASSERT_EQ(same_count.nonZeros(), K.nonZeros());
+  EXPECT_THROW(cholesky.factorise(same_count, 0.0, 1), std::invalid_argument);
+  EXPECT_TRUE(cholesky.factorise(K, 0.0, 1));
 }
 
 }  // namespace
