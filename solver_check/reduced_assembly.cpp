@@ -110,6 +110,28 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
       }
     slot_start_[e + 1] = static_cast<int>(slots_.size());
   }
+  // The threads whose value ranges (assemble()'s scatter) hold each element's first and last slot.
+  owner_threads_ = threads_;
+  first_owner_.resize(ne);
+  last_owner_.resize(ne);
+  const auto owner = [&](int slot) {
+    // The t with size * t / nt <= slot < size * (t + 1) / nt.
+    const long long size = static_cast<long long>(inner.size());
+    int t = static_cast<int>(static_cast<long long>(slot) * owner_threads_ / std::max<long long>(size, 1));
+    while (t + 1 < owner_threads_ && size * (t + 1) / owner_threads_ <= slot) ++t;
+    while (t > 0 && size * t / owner_threads_ > slot) --t;
+    return t;
+  };
+  for (int e = 0; e < ne; ++e) {
+    if (slot_start_[e] == slot_start_[e + 1]) {  // no free dof: nothing to scatter
+      first_owner_[e] = owner_threads_;
+      last_owner_[e] = -1;
+      continue;
+    }
+    const auto [lo, hi] = std::minmax_element(slots_.begin() + slot_start_[e], slots_.begin() + slot_start_[e + 1]);
+    first_owner_[e] = owner(*lo);
+    last_owner_[e] = owner(*hi);
+  }
 
   if (nodal_)
     for (int p = 0; p < nodal_->num_patches(); ++p) {
@@ -251,9 +273,20 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
         if (with_tangent) {
           const auto [v_lo, v_hi] = range(K_.nonZeros());
           const int* slots = slots_.data() + base;  // slots[i]: where buffer_[i] goes
-          const int count = slot_start_[end] - base;
-          for (int i = 0; i < count; ++i)
-            if (slots[i] >= v_lo && slots[i] < v_hi) values[slots[i]] += buffer_[i];
+          // Elements whose slots all lie in other threads' ranges are skipped, and those whose
+          // slots all lie in this thread's range need no test (the owners planned for
+          // owner_threads_ threads; for another count every element is tested).
+          const bool by_owner = nt == owner_threads_;
+          for (int e = start; e < end; ++e) {
+            if (by_owner && (t < first_owner_[e] || t > last_owner_[e])) continue;
+            const int from = slot_start_[e] - base, to = slot_start_[e + 1] - base;
+            if (by_owner && first_owner_[e] == t && last_owner_[e] == t) {
+              for (int i = from; i < to; ++i) values[slots[i]] += buffer_[i];
+            } else {
+              for (int i = from; i < to; ++i)
+                if (slots[i] >= v_lo && slots[i] < v_hi) values[slots[i]] += buffer_[i];
+            }
+          }
         }
       }
     }
