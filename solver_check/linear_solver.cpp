@@ -191,6 +191,9 @@ bool cholmod_available() {
 struct SparseSpdSolver::Impl {
   bool use_cholmod = false;
   int threads = 1;  ///< for the single-precision preconditioner's solves
+  /// For SupernodalCholesky: `threads`, or 1 when OpenBLAS runs more than one thread per call (two
+  /// threads calling a multithreaded OpenBLAS at once are serialised or worse; the same bits).
+  int factorisation_threads = 1;
   /// What precondition() applied last (SparseSpdSolver::preconditioner()).
   enum class Applied { None, Double, Single } applied = Applied::None;
   /// The kept factorisation is of an earlier, unshifted K: the next solve's preconditioner. A
@@ -260,9 +263,7 @@ struct SparseSpdSolver::Impl {
   /// else by CHOLMOD. True when positive definite.
   bool factorise_shifted(const SparseMatrix& K, double shift) {
     if (!numeric.empty()) {
-      // Two threads calling a multithreaded OpenBLAS at once are serialised or worse
-      // ($OPENBLAS_NUM_THREADS > 1): then the bins run one after the other (the same bits).
-      const bool ok = numeric.factorise(K, shift, blas_threads() > 1 ? 1 : threads);
+      const bool ok = numeric.factorise(K, shift, factorisation_threads);
       cholmod.set_factorised(ok);
       return ok;
     }
@@ -310,7 +311,7 @@ struct SparseSpdSolver::Impl {
         try {
           if (cholmod.allocate_values()) numeric.plan(cholmod.factor(), K);
         } catch (const std::exception&) {
-          numeric = SupernodalCholesky();
+          // Refused (or out of memory) before changing `numeric`: it stays empty.
         }
         analysis_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         factor_entries = c.lnz;
@@ -490,7 +491,10 @@ SparseSpdSolver::SparseSpdSolver(LinearSolverKind kind, int threads, std::vector
                       "and rebuild)");
   impl_->use_cholmod = kind != LinearSolverKind::SimplicialLDLT && cholmod_available();
 #ifdef TISSUEMESH_HAVE_CHOLMOD
-  if (impl_->use_cholmod) fix_blas_threads();
+  if (impl_->use_cholmod) {
+    fix_blas_threads();
+    impl_->factorisation_threads = blas_threads() > 1 ? 1 : impl_->threads;
+  }
 #endif
 }
 
@@ -525,7 +529,7 @@ std::string SparseSpdSolver::numeric_factorisation() const {
 #ifdef TISSUEMESH_HAVE_CHOLMOD
   if (impl_->use_cholmod && !impl_->numeric.empty()) {
     if (impl_->numeric.top_share() >= 1.0) return "SupernodalCholesky, 1 thread (the tree does not split)";
-    if (impl_->threads == 1 || blas_threads() > 1) return "SupernodalCholesky, 1 thread";
+    if (impl_->factorisation_threads == 1) return "SupernodalCholesky, 1 thread";
     const int top = static_cast<int>(std::lround(100.0 * impl_->numeric.top_share()));
     return "SupernodalCholesky, 2 threads (the top separators, " + std::to_string(top) + " % of the flops, on one)";
   }

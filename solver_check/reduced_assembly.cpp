@@ -38,6 +38,12 @@ LocalDofs local_dofs(const std::array<int, 10>& element, int n, const DofMap& do
 /// small enough that the chunk's buffer (up to 465 doubles per tet10) stays a few tens of MB.
 constexpr int kChunk = 8192;
 
+/// The contiguous range [first, second) of `size` entries (matrix values or force components)
+/// that thread t of nt adds in the scatter.
+std::pair<Eigen::Index, Eigen::Index> thread_range(Eigen::Index size, int t, int nt) {
+  return {size * t / nt, size * (t + 1) / nt};
+}
+
 /// $OMP_NUM_THREADS when set, else every processor. Not omp_get_max_threads(): other libraries
 /// in the process change it (initialising the Gmsh SDK, which the .msh writer does, sets it to 1).
 int default_threads() {
@@ -115,11 +121,8 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
   first_owner_.resize(ne);
   last_owner_.resize(ne);
   const auto owner = [&](int slot) {
-    // The t with size * t / nt <= slot < size * (t + 1) / nt.
-    const long long size = static_cast<long long>(inner.size());
-    int t = static_cast<int>(static_cast<long long>(slot) * owner_threads_ / std::max<long long>(size, 1));
-    while (t + 1 < owner_threads_ && size * (t + 1) / owner_threads_ <= slot) ++t;
-    while (t > 0 && size * t / owner_threads_ > slot) --t;
+    int t = 0;
+    while (t + 1 < owner_threads_ && slot >= thread_range(K_.nonZeros(), t, owner_threads_).second) ++t;
     return t;
   };
   for (int e = 0; e < ne; ++e) {
@@ -256,10 +259,7 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
       // element order, as a serial scatter would: bit-identical for any thread count.
       if (failed_element == std::numeric_limits<int>::max()) {
         const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-        const auto range = [t, nt](Eigen::Index size) {
-          return std::pair<Eigen::Index, Eigen::Index>(size * t / nt, size * (t + 1) / nt);
-        };
-        const auto [f_lo, f_hi] = range(out.f_int.size());
+        const auto [f_lo, f_hi] = thread_range(out.f_int.size(), t, nt);
         for (int e = start; e < end; ++e) {
           const double* f = forces_.data() + static_cast<std::size_t>(e - start) * nf;
           for (int a = 0; a < n_; ++a)
@@ -271,7 +271,7 @@ ReducedAssembly::Result ReducedAssembly::assemble(const Eigen::VectorXd& u, bool
         if (t == 0)
           for (int e = start; e < end; ++e) out.energy += energies_[e - start];
         if (with_tangent) {
-          const auto [v_lo, v_hi] = range(K_.nonZeros());
+          const auto [v_lo, v_hi] = thread_range(K_.nonZeros(), t, nt);
           const int* slots = slots_.data() + base;  // slots[i]: where buffer_[i] goes
           // Elements whose slots all lie in other threads' ranges are skipped, and those whose
           // slots all lie in this thread's range need no test (the owners planned for

@@ -151,7 +151,7 @@ TEST(SupernodalCholesky, RefusesToFactoriseAMatrixOfAnotherPattern) {
   other.coeffRef(4, 2) = 0.1;  // one entry more (outside L's pattern, see above)
   other.makeCompressed();
   EXPECT_THROW(cholesky.factorise(other, 0.0, 1), std::invalid_argument);
-  SparseMatrix same_count = K;  // one entry moved: (6, 0) of A's diagonal neighbourhood dropped, (4, 2) added
+  SparseMatrix same_count = K;  // one entry moved: the diagonal entry (6, 6) dropped, (4, 2) added
   same_count.coeffRef(4, 2) = 0.1;
   same_count.prune([](Eigen::Index i, Eigen::Index j, double) { return !(i == 6 && j == 6); });
   same_count.makeCompressed();
