@@ -47,19 +47,19 @@ std::vector<char> side_mask(const Model& m, const InterfaceSide& side, const std
   return mask;
 }
 
-std::vector<std::array<int, 2>> faces_between(const Model& m, const InterfaceSide& a, const InterfaceSide& b,
-                                              const std::string& set_name) {
-  const std::vector<char> in_a = side_mask(m, a, set_name), in_b = side_mask(m, b, set_name);
-  // Pair every face with its neighbour across it (or none on the boundary): faces sorted by key,
-  // then by position, so equal keys are adjacent. In a conforming mesh a key occurs at most twice;
-  // otherwise every later face gets the first as neighbour and the first the last.
+/// Per element face (index 4 e + f): the (element, face) across it, or {-1, -1} on the boundary.
+using FaceNeighbours = std::vector<std::array<int, 2>>;
+
+FaceNeighbours face_neighbours(const Model& m) {
+  // Faces sorted by key, then by position, so equal keys are adjacent. In a conforming mesh a key
+  // occurs at most twice; otherwise every later face gets the first as neighbour and the first the last.
   std::vector<std::pair<std::array<int, 3>, std::size_t>> faces;  // key, 4 e + f
   faces.reserve(m.elements.size() * 4);
   for (std::size_t e = 0; e < m.elements.size(); ++e)
     for (int f = 0; f < 4; ++f) faces.emplace_back(face_key(m, e, f), e * 4 + static_cast<std::size_t>(f));
   std::sort(faces.begin(), faces.end());
   auto face_of = [](std::size_t slot) { return std::array<int, 2>{static_cast<int>(slot / 4), static_cast<int>(slot % 4)}; };
-  std::vector<std::array<int, 2>> neighbour(m.elements.size() * 4, {-1, -1});
+  FaceNeighbours neighbour(m.elements.size() * 4, {-1, -1});
   for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i + 1;
     for (; j < faces.size() && faces[j].first == faces[i].first; ++j) {
@@ -68,6 +68,12 @@ std::vector<std::array<int, 2>> faces_between(const Model& m, const InterfaceSid
     }
     i = j;
   }
+  return neighbour;
+}
+
+std::vector<std::array<int, 2>> faces_between(const Model& m, const FaceNeighbours& neighbour, const InterfaceSide& a,
+                                              const InterfaceSide& b, const std::string& set_name) {
+  const std::vector<char> in_a = side_mask(m, a, set_name), in_b = side_mask(m, b, set_name);
   // Keep the face on side A's element so that its outward normal points from A to B.
   std::vector<std::array<int, 2>> out;
   for (std::size_t e = 0; e < m.elements.size(); ++e) {
@@ -89,14 +95,15 @@ Eigen::Vector3d face_area_normal(const Model& m, const std::array<int, 2>& face)
   return 0.5 * (p1 - p0).cross(p2 - p0);
 }
 
-std::vector<std::array<int, 2>> select_faces(const Model& m, const SetSelection& s, const std::string& name) {
-  if (s.kind == SetSelection::Kind::Between) return faces_between(m, s.side_a, s.side_b, name);
+std::vector<std::array<int, 2>> select_faces(const Model& m, const FaceNeighbours& neighbour, const SetSelection& s,
+                                             const std::string& name) {
+  if (s.kind == SetSelection::Kind::Between) return faces_between(m, neighbour, s.side_a, s.side_b, name);
   // Plane / box: boundary faces whose corners all lie in the selection.
   InterfaceSide all, outside;
   all.tissues = m.tissue_names;
   outside.outside = true;
   std::vector<std::array<int, 2>> out;
-  for (const auto& face : faces_between(m, all, outside, name)) {
+  for (const auto& face : faces_between(m, neighbour, all, outside, name)) {
     bool inside = true;
     for (int c : face_corners(face[1])) {
       const Eigen::Vector3d& p = m.nodes[m.elements[face[0]][c]];
@@ -129,12 +136,13 @@ std::vector<int> select_corner_nodes(const Model& m, const SetSelection& s,
 }
 
 // `faces` receives the triangles a `between` selection found (the tet10 step needs them).
-NodeSet make_node_set(const Model& m, const NodeSetSettings& settings, std::vector<std::array<int, 2>>& faces) {
+NodeSet make_node_set(const Model& m, const FaceNeighbours& neighbour, const NodeSetSettings& settings,
+                      std::vector<std::array<int, 2>>& faces) {
   NodeSet set;
   set.name = settings.name;
   set.constraint = settings.constraint;
   set.selection = settings.selection.describe();
-  faces = select_faces(m, settings.selection, settings.name);
+  faces = select_faces(m, neighbour, settings.selection, settings.name);
   set.nodes = select_corner_nodes(m, settings.selection, faces);
   if (set.nodes.empty())
     throw InputError("model: node set '" + set.name + "' (" + set.selection + ") selects no node");
@@ -272,7 +280,7 @@ void make_quadratic(Model& model) {
 }
 
 std::vector<std::array<int, 2>> interface_faces(const Model& model, const InterfaceSide& a, const InterfaceSide& b) {
-  return faces_between(model, a, b, "<interface>");
+  return faces_between(model, face_neighbours(model), a, b, "<interface>");
 }
 
 Model build_model(const TetMesh& mesh, const ModelSettings& settings,
@@ -305,11 +313,14 @@ Model build_model(const TetMesh& mesh, const ModelSettings& settings,
                        "' of the mesh has no material (add `materials: " + name + ": {...}`)");
     m.materials.push_back(it->second);
   }
+  // One neighbour table for every set: sorting the faces is most of a selection's time.
+  const bool any_set = !settings.node_sets.empty() || !settings.face_sets.empty();
+  const FaceNeighbours neighbours = any_set ? face_neighbours(m) : FaceNeighbours{};
   std::vector<std::vector<std::array<int, 2>>> set_faces(settings.node_sets.size());
   for (std::size_t i = 0; i < settings.node_sets.size(); ++i)
-    m.node_sets.push_back(make_node_set(m, settings.node_sets[i], set_faces[i]));
+    m.node_sets.push_back(make_node_set(m, neighbours, settings.node_sets[i], set_faces[i]));
   for (const FaceSetSettings& s : settings.face_sets) {
-    FaceSet set{s.name, select_faces(m, s.selection, s.name), s.selection.describe()};
+    FaceSet set{s.name, select_faces(m, neighbours, s.selection, s.name), s.selection.describe()};
     if (set.faces.empty())
       throw InputError("model: face set '" + set.name + "' (" + set.selection + ") selects no face");
     m.face_sets.push_back(std::move(set));
