@@ -26,6 +26,15 @@ class HyperelasticLaw {
   virtual double energy(const Eigen::Matrix3d& C) const = 0;
   virtual Eigen::Matrix3d pk2(const Eigen::Matrix3d& C) const = 0;
   virtual Tangent6 tangent(const Eigen::Matrix3d& C) const = 0;
+  /// W at C and, where the pointers are not null, S and CC: what an element kernel needs at a
+  /// quadrature point, in one call, with the same values (bit for bit) as energy(), pk2() and
+  /// tangent(). The default calls those three; a law overrides it to compute its invariants of C
+  /// (inverse, determinant, powers of J) once instead of three times.
+  virtual double evaluate(const Eigen::Matrix3d& C, Eigen::Matrix3d* S, Tangent6* CC) const {
+    if (S) *S = pk2(C);
+    if (CC) *CC = tangent(C);
+    return energy(C);
+  }
 
   /// The part of W that depends on J = sqrt(det C) alone, U(J), and its derivatives dU/dJ (the
   /// pressure it contributes, Cauchy sigma_vol = U'(J) I) and d2U/dJ2. Every law here is

@@ -20,21 +20,39 @@ class UncoupledMooneyRivlin : public HyperelasticLaw {
   std::string name() const override {
     return c01_ == 0.0 ? "uncoupled neo-Hookean ((J-1)^2)" : "uncoupled Mooney-Rivlin ((J-1)^2)";
   }
-  double energy(const Eigen::Matrix3d& C) const override {
+  double energy(const Eigen::Matrix3d& C) const override { return energy(Invariants(C)); }
+  Eigen::Matrix3d pk2(const Eigen::Matrix3d& C) const override { return pk2(C, Invariants(C)); }
+  Tangent6 tangent(const Eigen::Matrix3d& C) const override { return tangent(C, Invariants(C)); }
+  double evaluate(const Eigen::Matrix3d& C, Eigen::Matrix3d* S, Tangent6* CC) const override {
     const Invariants v(C);
+    if (S) *S = pk2(C, v);
+    if (CC) *CC = tangent(C, v);
+    return energy(v);
+  }
+  Volumetric volumetric(double J) const override {
+    return {0.5 * k_ * (J - 1.0) * (J - 1.0), k_ * (J - 1.0), k_};
+  }
+
+ private:
+  struct Invariants {
+    explicit Invariants(const Eigen::Matrix3d& C)
+        : Ci(C.inverse()), I1(C.trace()), I2(0.5 * (I1 * I1 - (C * C).trace())), J(std::sqrt(C.determinant())),
+          j23(std::pow(J, -2.0 / 3.0)), j43(j23 * j23) {}
+    Eigen::Matrix3d Ci;
+    double I1, I2, J, j23, j43;
+  };
+  double energy(const Invariants& v) const {
     return c10_ * (v.j23 * v.I1 - 3.0) + c01_ * (v.j43 * v.I2 - 3.0) + 0.5 * k_ * (v.J - 1.0) * (v.J - 1.0);
   }
-  Eigen::Matrix3d pk2(const Eigen::Matrix3d& C) const override {
-    const Invariants v(C);
+  Eigen::Matrix3d pk2(const Eigen::Matrix3d& C, const Invariants& v) const {
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
     Eigen::Matrix3d S = 2.0 * c10_ * v.j23 * (I - v.I1 / 3.0 * v.Ci) + k_ * v.J * (v.J - 1.0) * v.Ci;
     if (c01_ != 0.0) S += 2.0 * c01_ * v.j43 * (v.I1 * I - C - 2.0 / 3.0 * v.I2 * v.Ci);
     return S;
   }
-  Tangent6 tangent(const Eigen::Matrix3d& C) const override {
+  Tangent6 tangent(const Eigen::Matrix3d& C, const Invariants& v) const {
     using tensor4::outer;
     using tensor4::sym_product;
-    const Invariants v(C);
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
     const Tangent6 CiCi = outer(v.Ci, v.Ci), Ci_sym = sym_product(v.Ci);
     // 2 d/dC of 2 C10 J^-2/3 (I - I1/3 C^-1)
@@ -51,18 +69,6 @@ class UncoupledMooneyRivlin : public HyperelasticLaw {
                          2.0 / 3.0 * outer(v.Ci, v.I1 * I - C) + 2.0 / 3.0 * v.I2 * Ci_sym);
     return t1 + t2 + t3;
   }
-  Volumetric volumetric(double J) const override {
-    return {0.5 * k_ * (J - 1.0) * (J - 1.0), k_ * (J - 1.0), k_};
-  }
-
- private:
-  struct Invariants {
-    explicit Invariants(const Eigen::Matrix3d& C)
-        : Ci(C.inverse()), I1(C.trace()), I2(0.5 * (I1 * I1 - (C * C).trace())), J(std::sqrt(C.determinant())),
-          j23(std::pow(J, -2.0 / 3.0)), j43(j23 * j23) {}
-    Eigen::Matrix3d Ci;
-    double I1, I2, J, j23, j43;
-  };
   double c10_, c01_, k_;
 };
 

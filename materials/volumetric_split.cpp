@@ -28,6 +28,21 @@ class ShearPart : public HyperelasticLaw {
     return full_.tangent(C) - J * (v.dU + J * v.d2U) * tensor4::outer(Ci, Ci) +
            2.0 * J * v.dU * tensor4::sym_product(Ci);
   }
+  double evaluate(const Eigen::Matrix3d& C, Eigen::Matrix3d* S, Tangent6* CC) const override {
+    // The same expressions as the three calls above, in the same order (bit for bit).
+    const double W = full_.evaluate(C, S, CC);
+    const double J = std::sqrt(C.determinant());
+    const Volumetric v = full_.volumetric(J);
+    if (S || CC) {
+      const Eigen::Matrix3d Ci = C.inverse();
+      if (S) *S -= J * v.dU * Ci;
+      if (CC) {
+        *CC -= J * (v.dU + J * v.d2U) * tensor4::outer(Ci, Ci);
+        *CC += 2.0 * J * v.dU * tensor4::sym_product(Ci);
+      }
+    }
+    return W - v.U;
+  }
   Volumetric volumetric(double) const override { return {}; }
 
  private:

@@ -93,32 +93,38 @@ ElementResponse fixed_size_response(const ElementGeometry& geometry, const Eleme
   const bool want_tangent = what == ElementOutput::EnergyForceAndTangent;
 
   ElementResponse r;
-  if (want_force) r.force = ElementVector::Zero(D);  // sized, and zero should an element fail
-  if (want_tangent) r.tangent = ElementMatrix::Zero(D, D);
   r.min_J = std::numeric_limits<double>::infinity();
+  // On failure: zero energy, and a zero force and tangent of the requested sizes.
+  const auto fail = [&](ElementStatus status, int q) {
+    if (want_force) r.force = ElementVector::Zero(D);
+    if (want_tangent) r.tangent = ElementMatrix::Zero(D, D);
+    return failed(r, status, q);
+  };
   Eigen::Matrix<double, D, 1> force = Eigen::Matrix<double, D, 1>::Zero();
   Eigen::Matrix<double, D, D> tangent;
   if (want_tangent) tangent.setZero();
   const Eigen::Matrix<double, N, 3> ue = u;
+  Eigen::Matrix3d S;
+  Tangent6 CC;
 
   for (int q = 0; q < static_cast<int>(geometry.dV.size()); ++q) {
     if (geometry.grad[q].rows() != N) throw std::invalid_argument("element kernel: geometry and u differ in node count");
     const Eigen::Matrix<double, N, 3> G = geometry.grad[q];
     const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + ue.transpose() * G;
-    if (!F.allFinite()) return failed(r, ElementStatus::NonFinite, q);
+    if (!F.allFinite()) return fail(ElementStatus::NonFinite, q);
     const double J = F.determinant();
     r.min_J = std::min(r.min_J, J);
-    if (!(J > 0.0)) return failed(r, ElementStatus::Inverted, q);
+    if (!(J > 0.0)) return fail(ElementStatus::Inverted, q);
 
     const Eigen::Matrix3d C = F.transpose() * F;
     const double dV = geometry.dV[q];
-    const double W = law.energy(C);
-    if (!std::isfinite(W)) return failed(r, ElementStatus::NonFinite, q);
+    // One call for W, S and CC (the law computes its invariants of C once).
+    const double W = law.evaluate(C, want_force ? &S : nullptr, want_tangent ? &CC : nullptr);
+    if (!std::isfinite(W)) return fail(ElementStatus::NonFinite, q);
     r.energy += W * dV;
     if (!want_force) continue;
 
-    const Eigen::Matrix3d S = law.pk2(C);
-    if (!S.allFinite()) return failed(r, ElementStatus::NonFinite, q);
+    if (!S.allFinite()) return fail(ElementStatus::NonFinite, q);
     Eigen::Matrix<double, 6, 1> Sv;
     Sv << S(0, 0), S(1, 1), S(2, 2), S(0, 1), S(1, 2), S(0, 2);
     Eigen::Matrix<double, 6, D> B;  // nonlinear strain-displacement matrix (header comment)
@@ -137,8 +143,7 @@ ElementResponse fixed_size_response(const ElementGeometry& geometry, const Eleme
     force.noalias() += B.transpose() * (Sv * dV);
     if (!want_tangent) continue;
 
-    const Tangent6 CC = law.tangent(C);
-    if (!CC.allFinite()) return failed(r, ElementStatus::NonFinite, q);
+    if (!CC.allFinite()) return fail(ElementStatus::NonFinite, q);
     const Eigen::Matrix<double, D, 6> BtC = B.transpose() * (CC * dV);
     tangent.noalias() += BtC.lazyProduct(B);
     const Eigen::Matrix<double, N, N> GSG = G * (S * dV) * G.transpose();  // grad N_a . S grad N_b dV

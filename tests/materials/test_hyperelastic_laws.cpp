@@ -3,6 +3,7 @@
 #include "materials/elastic_constants.h"
 #include "materials/hyperelastic_law.h"
 #include "materials/tensor4.h"
+#include "materials/volumetric_split.h"
 #include "support/finite_difference.h"
 #include "support/tolerances.h"
 
@@ -136,5 +137,31 @@ TEST(HyperelasticLaws, UniaxialStressMatchesReferenceValues) {
     const auto b = uniaxial(*abaqus, r.lambda);
     EXPECT_NEAR(b[0], r.p_j1, 1e-3) << r.lambda;
     EXPECT_NEAR(b[1], r.s_j1, 1e-6) << r.lambda;
+  }
+}
+
+TEST(HyperelasticLaws, EvaluateGivesWhatTheThreeCallsGive) {
+  // evaluate() (the element kernel's one call per quadrature point) shares the invariants of C
+  // between W, S and CC but computes each with the same expressions in the same order as
+  // energy(), pk2() and tangent(), so the values are equal bit for bit (the build enables no
+  // floating-point contraction that could differ between the two routes). Every law, its shear
+  // part (the nodal-pressure tet4's), and the calls without S or CC.
+  std::vector<std::unique_ptr<HyperelasticLaw>> all = laws();
+  all.push_back(make_uncoupled_ogden({0.7, 0.3}, {1.5, -4.0}, 10.0));
+  std::vector<std::unique_ptr<HyperelasticLaw>> shear;
+  for (const auto& law : all) shear.push_back(make_shear_part(*law));
+  for (auto& s : shear) all.push_back(std::move(s));
+  const Eigen::Matrix3d C = sample_C();
+  for (const auto& law : all) {
+    SCOPED_TRACE(law->name());
+    Eigen::Matrix3d S;
+    Tangent6 CC;
+    EXPECT_EQ(law->evaluate(C, &S, &CC), law->energy(C));
+    EXPECT_TRUE((S.array() == law->pk2(C).array()).all()) << S << "\nvs\n" << law->pk2(C);
+    EXPECT_TRUE((CC.array() == law->tangent(C).array()).all());
+    Eigen::Matrix3d S_only;
+    EXPECT_EQ(law->evaluate(C, &S_only, nullptr), law->energy(C));
+    EXPECT_TRUE((S_only.array() == S.array()).all());
+    EXPECT_EQ(law->evaluate(C, nullptr, nullptr), law->energy(C));
   }
 }
