@@ -68,20 +68,45 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
   const int num_nodes = dofs.num_nodes();
   const int ne = static_cast<int>(elements.size());
 
-  // Node graph (each node with itself and every node it shares an element with), sorted.
-  std::vector<std::vector<int>> adjacent(num_nodes);
-  for (int e = 0; e < ne; ++e)
-    for (int a = 0; a < n_; ++a) {
-      for (int b = 0; b < n_; ++b) adjacent[elements[e][a]].push_back(elements[e][b]);
+  // Upper node graph in CSR: each node v, then the nodes w > v it shares an element (or a
+  // nodal-pressure patch) with, increasing. Gathered with duplicates, then sorted per node.
+  std::vector<int> start(num_nodes + 1, 0);
+  const auto for_each_group = [&](const auto& visit) {  // visit(first, last): nodes sharing an element or patch
+    for (int e = 0; e < ne; ++e) visit(elements[e].data(), elements[e].data() + n_);
+    if (nodal_)
+      for (int p = 0; p < nodal_->num_patches(); ++p) visit(nodal_->patch_nodes_begin(p), nodal_->patch_nodes_end(p));
+  };
+  for_each_group([&](const int* first, const int* last) {
+    for (const int* v = first; v != last; ++v) start[*v + 1] += static_cast<int>(last - first);
+  });
+  for (int v = 0; v < num_nodes; ++v) start[v + 1] += start[v];
+  std::vector<int> upper(start[num_nodes]);
+  {
+    std::vector<int> at(start.begin(), start.end() - 1);
+    for_each_group([&](const int* first, const int* last) {
+      for (const int* v = first; v != last; ++v)
+        for (const int* w = first; w != last; ++w)
+          if (*w >= *v) upper[at[*v]++] = *w;
+    });
+    int kept = 0;
+    for (int v = 0; v < num_nodes; ++v) {
+      const auto begin = upper.begin() + start[v], end = upper.begin() + at[v];
+      std::sort(begin, end);
+      const auto unique_end = std::unique(begin, end);
+      start[v] = kept;
+      kept = static_cast<int>(std::copy(begin, unique_end, upper.begin() + kept) - upper.begin());
     }
-  if (nodal_)
-    for (int p = 0; p < nodal_->num_patches(); ++p)
-      for (const int* v = nodal_->patch_nodes_begin(p); v != nodal_->patch_nodes_end(p); ++v)
-        adjacent[*v].insert(adjacent[*v].end(), nodal_->patch_nodes_begin(p), nodal_->patch_nodes_end(p));
-  for (auto& list : adjacent) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
+    start[num_nodes] = kept;
+    upper.resize(kept);
   }
+  // Where node w's rows start in node v's first column, after v's own (the reduced dofs of the
+  // entries of v's list before w's); the column of v's dof k has k fewer rows of v's own.
+  std::vector<int> rows_before(upper.size(), 0);
+  for (int v = 0; v < num_nodes; ++v)
+    for (int i = start[v] + 1, sum = 0; i < start[v + 1]; ++i) {
+      rows_before[i] = sum;
+      sum += dofs.count(upper[i]);
+    }
 
   // Column-major lower pattern: column of dof (v, k) holds the dofs of adjacent nodes w >= v
   // (components >= k for w = v). Reduced dofs are numbered node by node, so rows come sorted.
@@ -91,10 +116,9 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
   for (int v = 0; v < num_nodes; ++v)
     for (int k = 0; k < dofs.count(v); ++k) {
       const int column = dofs.first(v) + k;
-      for (int w : adjacent[v]) {
-        if (w < v) continue;
-        for (int l = (w == v ? k : 0); l < dofs.count(w); ++l) inner.push_back(dofs.first(w) + l);
-      }
+      for (int l = k; l < dofs.count(v); ++l) inner.push_back(dofs.first(v) + l);
+      for (int i = start[v] + 1; i < start[v + 1]; ++i)
+        for (int l = 0; l < dofs.count(upper[i]); ++l) inner.push_back(dofs.first(upper[i]) + l);
       outer[column + 1] = static_cast<int>(inner.size());
     }
   K_.resize(nf, nf);
@@ -102,21 +126,25 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
   std::copy(outer.begin(), outer.end(), K_.outerIndexPtr());
   std::copy(inner.begin(), inner.end(), K_.innerIndexPtr());
   std::fill(K_.valuePtr(), K_.valuePtr() + inner.size(), 0.0);
+  // Value slot of row dof (w, l) in the column of dof (v, k), w >= v.
+  const auto slot_of = [&](int v, int k, int w, int l) {
+    const int column_start = outer[dofs.first(v) + k];
+    if (w == v) return column_start + l - k;
+    const int i = static_cast<int>(std::lower_bound(upper.begin() + start[v] + 1, upper.begin() + start[v + 1], w) -
+                                   upper.begin());
+    return column_start + (dofs.count(v) - k) + rows_before[i] + l;
+  };
 
-  // Value slot of every lower pair (i >= j, local order) of each element's reduced dofs.
+  // Value slot of every lower pair (i >= j, local order) of each element's reduced dofs, and the
+  // threads whose value ranges (assemble()'s scatter) hold each element's first and last slot.
+  // Elements are independent: in parallel, each writing its own part of slots_.
   slot_start_.assign(ne + 1, 0);
   for (int e = 0; e < ne; ++e) {
-    const LocalDofs d = local_dofs(elements[e], n_, dofs);
-    for (int i = 0; i < d.count; ++i)
-      for (int j = 0; j <= i; ++j) {
-        const int r = std::max(d.global[i], d.global[j]), c = std::min(d.global[i], d.global[j]);
-        const int* begin = inner.data() + outer[c];
-        const int* end = inner.data() + outer[c + 1];
-        slots_.push_back(static_cast<int>(std::lower_bound(begin, end, r) - inner.data()));
-      }
-    slot_start_[e + 1] = static_cast<int>(slots_.size());
+    int count = 0;
+    for (int a = 0; a < n_; ++a) count += dofs.count(elements[e][a]);
+    slot_start_[e + 1] = slot_start_[e] + count * (count + 1) / 2;
   }
-  // The threads whose value ranges (assemble()'s scatter) hold each element's first and last slot.
+  slots_.resize(slot_start_[ne]);
   owner_threads_ = threads_;
   first_owner_.resize(ne);
   last_owner_.resize(ne);
@@ -125,7 +153,16 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
     while (t + 1 < owner_threads_ && slot >= thread_range(K_.nonZeros(), t, owner_threads_).second) ++t;
     return t;
   };
+#pragma omp parallel for num_threads(threads_) schedule(static)
   for (int e = 0; e < ne; ++e) {
+    const LocalDofs d = local_dofs(elements[e], n_, dofs);
+    int* slot = slots_.data() + slot_start_[e];
+    for (int i = 0; i < d.count; ++i)
+      for (int j = 0; j <= i; ++j) {
+        const bool i_lower = d.global[i] < d.global[j];  // the column is the lower dof's
+        const int c = i_lower ? i : j, r = i_lower ? j : i;
+        *slot++ = slot_of(elements[e][d.node[c]], d.column[c], elements[e][d.node[r]], d.column[r]);
+      }
     if (slot_start_[e] == slot_start_[e + 1]) {  // no free dof: nothing to scatter
       first_owner_[e] = owner_threads_;
       last_owner_[e] = -1;
