@@ -73,8 +73,9 @@ class SparseSpdSolver {
 
   /// "CHOLMOD supernodal LLT" or "Eigen SimplicialLDLT" (the factorisation).
   std::string name() const;
-  /// Who computes the numeric factorisations: "SupernodalCholesky, 2 threads (the top separators,
-  /// N % of the flops, on one)" or ", 1 thread", "CHOLMOD", "Eigen", or "none" before the first.
+  /// Who computes the numeric factorisations: "SupernodalCholesky, 2 threads (two subtrees at
+  /// once, then the top separators, N % of the flops: ...)" or ", 1 thread", "CHOLMOD", "Eigen",
+  /// or "none" before the first.
   std::string numeric_factorisation() const;
   int factorisations() const { return factorisations_; }
   int shifted_factorisations() const { return shifted_; }

@@ -7,7 +7,10 @@
 // BLAS runs on one thread (linear_solver.h: more BLAS threads change the last bits with their
 // count and stall on a busy machine). A nested-dissection ordering's tree splits below its top
 // separators into independent subtrees; here two threads factorise them at once, each calling
-// BLAS on one thread, and the top follows on one thread.
+// BLAS on one thread, and the top follows: its wide supernodes (the root separator of a 3D mesh:
+// ~1,600 columns and a third of the flops on the 60K-tet benchmark model) by panels on both
+// threads, the others on one. The root's dense factorisation took 37-43 ms of each ~160 ms
+// factorisation on one thread, 19-25 ms by panels on two.
 //
 // Algorithm (right-looking supernodal): a supernode whose block holds A's entries less the updates
 // of all its descendants is factorised (dpotrf on its diagonal block, dtrsm below it) and sends its
@@ -16,7 +19,8 @@
 // supernodes), except bin 1's updates of top supernodes: they go into a buffer, added to the top's
 // blocks once both bins are done (bin 0 writes there meanwhile). Every entry thus receives the same
 // operations in the same order whatever the thread count: the factor depends on A and the shift
-// only (one thread does bin 0, bin 1, then the top).
+// only (one thread does bin 0, bin 1, then the top; a wide supernode is cut into the same panels
+// and panel parts for any thread count).
 //
 // Memory: the factor's own values (written in place) plus, when the tree splits, a buffer of the
 // top supernodes' blocks, the largest update per thread, and the map from K's entries to the
@@ -52,7 +56,7 @@ class SupernodalCholesky {
   /// must run on one thread per call when `threads` > 1 (see the .cpp).
   bool factorise(const Eigen::SparseMatrix<double>& K, double shift, int threads);
 
-  /// Share of the estimated flops in the top part (done by one thread), in [0, 1].
+  /// Share of the estimated flops in the top part (after both bins; 1 when the tree does not split).
   double top_share() const { return top_share_; }
 
  private:
@@ -64,7 +68,12 @@ class SupernodalCholesky {
   /// Factorises supernode s (its block complete) and sends its updates; `bin` is s's bin, or -1
   /// for the top (updates of top supernodes from a bin go to that bin's buffer). False when s's
   /// diagonal block is not positive definite.
-  bool eliminate(int s, int bin, std::vector<double>& product, std::vector<int>& position);
+  /// A top supernode is factorised on `threads` threads when it is wide (the .cpp's
+  /// kPanelledColumns), else on the caller's.
+  bool eliminate(int s, int bin, std::vector<double>& product, std::vector<int>& position, int threads = 1);
+  /// dpotrf and dtrsm of supernode s's block by panels, on up to two threads (the same bits for
+  /// any count). False when the diagonal block is not positive definite.
+  bool factorise_panelled(int s, int threads);
 
   int n_ = 0, nsuper_ = 0;
   const int* super_ = nullptr;

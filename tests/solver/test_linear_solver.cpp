@@ -255,7 +255,7 @@ TEST_F(CholmodSolver, FactorisesTwoSubtreesAtOnceWithTheSameBitsAsOneThread) {
     SparseSpdSolver solver(LinearSolverKind::Cholmod, threads, nodes);
     Eigen::VectorXd x;
     EXPECT_TRUE(solver.solve(K, b, x, 0.0));
-    EXPECT_EQ(solver.numeric_factorisation().rfind(threads == 2 ? "SupernodalCholesky, 2 threads (the top"
+    EXPECT_EQ(solver.numeric_factorisation().rfind(threads == 2 ? "SupernodalCholesky, 2 threads (two subtrees"
                                                                 : "SupernodalCholesky, 1 thread", 0),
               0u)
         << solver.numeric_factorisation();

@@ -85,6 +85,35 @@ TEST(SupernodalCholesky, FactorisesAChainOnOneThread) {
   expect_factor(f, 0.0);
 }
 
+TEST(SupernodalCholesky, FactorisesAWideTopSupernodeByPanels) {
+  // Two leaves of 10 under a 300-column separator (wider than kPanelledColumns = 256, so it is
+  // factorised by panels of 128 on two threads) whose rows below reach the 10-column root: the
+  // panels' row halves include those rows, and the last panel is narrower than 128.
+  std::vector<std::pair<int, int>> couplings{{20, 0}, {25, 9}, {40, 10}, {300, 19}, {319, 20}, {200, 50},
+                                             {320, 100}, {325, 319}, {329, 250}};
+  for (int i = 1; i < 330; ++i)
+    if (i != 10 && i != 20 && i != 320) couplings.emplace_back(i, i - 1);  // chains inside each supernode
+  // Long-range couplings inside the separator and into the root: L's blocks fill in, so every
+  // panel updates every column right of it (coupled() stays diagonally dominant: at most ~6
+  // couplings per row against a diagonal of 13 or more there).
+  for (int i = 20; i < 320; ++i) {
+    const int j = 20 + (i * 37) % 300;
+    if (j < i - 1) couplings.emplace_back(i, j);
+    if (i % 3 == 0) couplings.emplace_back(320 + i % 10, i);
+  }
+  std::vector<int> perm(330);
+  for (int i = 0; i < 330; ++i) perm[i] = (i * 7) % 330;  // 7 and 330 are coprime
+  test::Factor f(test::coupled(330, couplings), {0, 10, 20, 320, 330}, perm);
+  SupernodalCholesky planned;
+  planned.plan(f.view(), lower(f.A));
+  EXPECT_GT(planned.top_share(), 0.9);  // the wide separator is the top's
+  expect_factor(f, 0.0);
+  expect_factor(f, 1.5);
+  const SparseMatrix K = lower(f.A);
+  EXPECT_FALSE(planned.factorise(K, -30.0, 2));  // a negative pivot in a panel
+  EXPECT_TRUE(planned.factorise(K, 0.0, 2));
+}
+
 TEST(SupernodalCholesky, ReportsAMatrixThatIsNotPositiveDefinite) {
   // coupled()'s diagonal is 8 .. 11.5 with off-diagonals of at most 1: a shift of -10 leaves
   // negative pivots in both bins and the top.
