@@ -69,32 +69,46 @@ void SinglePrecisionFactor::plan(const SupernodalFactorView& f) {
 void SinglePrecisionFactor::forward(int s, float* y, float* outside, int first, int last,
                                     std::vector<float>& scratch) const {
   const int k1 = super_[s], nscol = super_[s + 1] - k1, nsrow = pi_[s + 1] - pi_[s], below = nsrow - nscol;
-  const BlockMap block(values_ + px_[s], nsrow, nscol, Eigen::OuterStride<>(nsrow));
-  VectorMap own(y + k1, nscol);
-  block.topRows(nscol).triangularView<Eigen::Lower>().solveInPlace(own);
+  const float* block = values_ + px_[s];
+  // One pass over the block's columns: w = (the supernode's own unknowns, its updates of the rows
+  // below); column j divides w[j] by the pivot and subtracts the column times w[j] from w[j + 1:].
+  float* w = scratch.data();
+  std::copy(y + k1, y + k1 + nscol, w);
+  std::fill(w + nscol, w + nsrow, 0.0f);
+  for (int j = 0; j < nscol; ++j) {
+    const float* column = block + static_cast<std::ptrdiff_t>(j) * nsrow;
+    const float wj = w[j] / column[j];
+    w[j] = wj;
+    const int n = nsrow - j - 1;
+    VectorMap(w + j + 1, n).noalias() -= wj * Eigen::Map<const Eigen::VectorXf>(column + j + 1, n);
+  }
+  std::copy(w, w + nscol, y + k1);
   if (below == 0) return;
-  VectorMap update(scratch.data(), below);
-  update.noalias() = block.bottomRows(below) * own;
   const int* row = rows_ + pi_[s] + nscol;
   // Rows of this subtree's columns are updated in place, the others (top rows) in the bin's buffer.
   const int lo = first >= 0 ? super_[first] : 0, hi = first >= 0 ? super_[last + 1] : n_;
   for (int i = 0; i < below; ++i) {
     const int r = row[i];
-    (r >= lo && r < hi ? y : outside)[r] -= update[i];
+    (r >= lo && r < hi ? y : outside)[r] += w[nscol + i];
   }
 }
 
 void SinglePrecisionFactor::backward(int s, float* y, std::vector<float>& scratch) const {
   const int k1 = super_[s], nscol = super_[s + 1] - k1, nsrow = pi_[s + 1] - pi_[s], below = nsrow - nscol;
-  const BlockMap block(values_ + px_[s], nsrow, nscol, Eigen::OuterStride<>(nsrow));
-  VectorMap own(y + k1, nscol);
-  if (below > 0) {
-    VectorMap known(scratch.data(), below);
-    const int* row = rows_ + pi_[s] + nscol;
-    for (int i = 0; i < below; ++i) known[i] = y[row[i]];
-    own.noalias() -= block.bottomRows(below).transpose() * known;
+  const float* block = values_ + px_[s];
+  // w = (own unknowns, the known values of the rows below); column j, last to first:
+  // w[j] = (w[j] - column[j + 1:] . w[j + 1:]) / pivot.
+  float* w = scratch.data();
+  std::copy(y + k1, y + k1 + nscol, w);
+  const int* row = rows_ + pi_[s] + nscol;
+  for (int i = 0; i < below; ++i) w[nscol + i] = y[row[i]];
+  for (int j = nscol - 1; j >= 0; --j) {
+    const float* column = block + static_cast<std::ptrdiff_t>(j) * nsrow;
+    const int n = nsrow - j - 1;
+    const float dot = Eigen::Map<const Eigen::VectorXf>(column + j + 1, n).dot(Eigen::Map<const Eigen::VectorXf>(w + j + 1, n));
+    w[j] = (w[j] - dot) / column[j];
   }
-  block.topRows(nscol).triangularView<Eigen::Lower>().transpose().solveInPlace(own);
+  std::copy(w, w + nscol, y + k1);
 }
 
 void SinglePrecisionFactor::solve(const Eigen::VectorXd& r, Eigen::VectorXd& z, int threads) {
