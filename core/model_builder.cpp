@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <tuple>
 #include <unordered_map>
 
 namespace tissuemesh {
@@ -51,22 +52,36 @@ std::vector<char> side_mask(const Model& m, const InterfaceSide& side, const std
 using FaceNeighbours = std::vector<std::array<int, 2>>;
 
 FaceNeighbours face_neighbours(const Model& m) {
-  // Faces sorted by key, then by position, so equal keys are adjacent. In a conforming mesh a key
-  // occurs at most twice; otherwise every later face gets the first as neighbour and the first the last.
-  std::vector<std::pair<std::array<int, 3>, std::size_t>> faces;  // key, 4 e + f
-  faces.reserve(m.elements.size() * 4);
+  // Faces bucketed by their lowest corner (counting sort), each bucket sorted by the other two
+  // corners, then by position, so equal keys are adjacent. In a conforming mesh a key occurs at
+  // most twice; otherwise every later face gets the first as neighbour and the first the last.
+  const std::size_t faces = m.elements.size() * 4;
+  std::vector<std::array<int, 3>> key(faces);
+  std::vector<int> bucket_start(m.nodes.size() + 1, 0);
   for (std::size_t e = 0; e < m.elements.size(); ++e)
-    for (int f = 0; f < 4; ++f) faces.emplace_back(face_key(m, e, f), e * 4 + static_cast<std::size_t>(f));
-  std::sort(faces.begin(), faces.end());
-  auto face_of = [](std::size_t slot) { return std::array<int, 2>{static_cast<int>(slot / 4), static_cast<int>(slot % 4)}; };
-  FaceNeighbours neighbour(m.elements.size() * 4, {-1, -1});
-  for (std::size_t i = 0; i < faces.size();) {
-    std::size_t j = i + 1;
-    for (; j < faces.size() && faces[j].first == faces[i].first; ++j) {
-      neighbour[faces[j].second] = face_of(faces[i].second);
-      neighbour[faces[i].second] = face_of(faces[j].second);
+    for (int f = 0; f < 4; ++f) {
+      key[e * 4 + static_cast<std::size_t>(f)] = face_key(m, e, f);
+      ++bucket_start[key[e * 4 + static_cast<std::size_t>(f)][0] + 1];
     }
-    i = j;
+  for (std::size_t v = 0; v < m.nodes.size(); ++v) bucket_start[v + 1] += bucket_start[v];
+  std::vector<std::size_t> sorted(faces);
+  {
+    std::vector<int> fill(bucket_start.begin(), bucket_start.end() - 1);
+    for (std::size_t slot = 0; slot < faces; ++slot) sorted[fill[key[slot][0]]++] = slot;  // by position within a bucket
+  }
+  auto face_of = [](std::size_t slot) { return std::array<int, 2>{static_cast<int>(slot / 4), static_cast<int>(slot % 4)}; };
+  FaceNeighbours neighbour(faces, {-1, -1});
+  for (std::size_t v = 0; v < m.nodes.size(); ++v) {
+    const auto begin = sorted.begin() + bucket_start[v], end = sorted.begin() + bucket_start[v + 1];
+    std::sort(begin, end, [&](std::size_t x, std::size_t y) { return std::tie(key[x], x) < std::tie(key[y], y); });
+    for (auto i = begin; i != end;) {
+      auto j = i + 1;
+      for (; j != end && key[*j] == key[*i]; ++j) {
+        neighbour[*j] = face_of(*i);
+        neighbour[*i] = face_of(*j);
+      }
+      i = j;
+    }
   }
   return neighbour;
 }

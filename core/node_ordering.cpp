@@ -29,26 +29,36 @@ struct Graph {
 };
 
 Graph node_graph(int n, const std::vector<std::array<int, 10>>& elements, int npe) {
-  std::vector<std::vector<int>> rows(static_cast<std::size_t>(n));
+  // Gathered in compressed rows by counting (every pair of an element's nodes, repeats included),
+  // then sorted and made unique row by row.
+  const auto valid = [](const std::array<int, 10>& el, int a, int b) { return el[a] >= 0 && el[b] >= 0 && el[a] != el[b]; };
+  std::vector<int> at(static_cast<std::size_t>(n) + 1, 0);
   for (const auto& el : elements)
     for (int a = 0; a < npe; ++a)
       for (int b = 0; b < npe; ++b)
-        if (a != b && el[a] >= 0 && el[b] >= 0 && el[a] != el[b]) rows[el[a]].push_back(el[b]);
+        if (a != b && valid(el, a, b)) ++at[el[a] + 1];
+  for (int v = 0; v < n; ++v) at[v + 1] += at[v];
+  std::vector<int> pairs(static_cast<std::size_t>(at[n]));
+  std::vector<int> fill(at.begin(), at.end() - 1);
+  for (const auto& el : elements)
+    for (int a = 0; a < npe; ++a)
+      for (int b = 0; b < npe; ++b)
+        if (a != b && valid(el, a, b)) pairs[fill[el[a]]++] = el[b];
   Graph g;
   g.degree.resize(static_cast<std::size_t>(n));
-  for (int v = 0; v < n; ++v) {
-    std::sort(rows[v].begin(), rows[v].end());
-    rows[v].erase(std::unique(rows[v].begin(), rows[v].end()), rows[v].end());
-    g.degree[v] = static_cast<int>(rows[v].size());
-  }
   g.start.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (int v = 0; v < n; ++v) g.start[v + 1] = g.start[v] + g.degree[v];
-  g.adj.reserve(static_cast<std::size_t>(g.start[n]));
   for (int v = 0; v < n; ++v) {
-    std::sort(rows[v].begin(), rows[v].end(),
+    const auto begin = pairs.begin() + at[v], end = pairs.begin() + at[v + 1];
+    std::sort(begin, end);
+    g.degree[v] = static_cast<int>(std::unique(begin, end) - begin);
+    g.start[v + 1] = g.start[v] + g.degree[v];
+  }
+  g.adj.resize(static_cast<std::size_t>(g.start[n]));
+  for (int v = 0; v < n; ++v) {
+    const auto row = g.adj.begin() + g.start[v];
+    std::copy(pairs.begin() + at[v], pairs.begin() + at[v] + g.degree[v], row);
+    std::sort(row, row + g.degree[v],
               [&](int x, int y) { return g.degree[x] != g.degree[y] ? g.degree[x] < g.degree[y] : x < y; });
-    g.adj.insert(g.adj.end(), rows[v].begin(), rows[v].end());
-    std::vector<int>().swap(rows[v]);
   }
   return g;
 }
