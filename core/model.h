@@ -12,8 +12,8 @@
 //   for tet10, [4..9] are the midside nodes of edges (0,1) (1,2) (2,0) (0,3) (1,3) (2,3): the
 //   order of VTK, Abaqus/CalculiX C3D10 and FEBio tet10 (formats.md §1.6). Unused slots are -1.
 // - tissue_ids[e] in 1..tissue_names.size(); materials[i] belongs to tissue_names[i]. build_model
-//   groups elements by tissue (mesh order kept within a tissue), so file ids = model order + 1 in
-//   every format.
+//   groups elements by tissue (within a tissue: by lowest corner with `node_order: rcm`, the
+//   mesh's order with `mesh`), so file ids = model order + 1 in every format.
 // - a node set lists sorted, unique 0-based node indices; a sliding set also carries one unit
 //   normal per node (the constraint is n . u = 0).
 // - a face set lists (element, local face) pairs with the Abaqus face numbering of C3D4/C3D10:

@@ -279,6 +279,34 @@ void renumber_nodes_rcm(Model& m) {
   }
 }
 
+// With the RCM numbering: elements within a tissue ordered by their lowest corner (ties keep their
+// order), so that consecutive elements share nodes and nearby nodes get nearby ids. Face sets
+// follow. Measured on the 60K-tet benchmark model (4 alternating pairs of `tissuemesh solve`):
+// the built-in solver's assembly 0.59-0.73 s instead of 0.70-0.88 s, its matrix writes and
+// displacement reads no longer jumping across the arrays with the mesher's cell order.
+void order_elements_by_lowest_node(Model& m) {
+  const std::size_t n = m.elements.size();
+  std::vector<int> order(n), lowest(n);
+  for (std::size_t e = 0; e < n; ++e) {
+    order[e] = static_cast<int>(e);
+    lowest[e] = *std::min_element(m.elements[e].begin(), m.elements[e].begin() + 4);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+    return m.tissue_ids[x] != m.tissue_ids[y] ? m.tissue_ids[x] < m.tissue_ids[y] : lowest[x] < lowest[y];
+  });
+  std::vector<std::array<int, 10>> elements(n);
+  std::vector<int> tissue_ids(n), new_of_old(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    elements[k] = m.elements[order[k]];
+    tissue_ids[k] = m.tissue_ids[order[k]];
+    new_of_old[order[k]] = static_cast<int>(k);
+  }
+  m.elements = std::move(elements);
+  m.tissue_ids = std::move(tissue_ids);
+  for (FaceSet& set : m.face_sets)
+    for (auto& face : set.faces) face[0] = new_of_old[face[0]];
+}
+
 }  // namespace
 
 void make_quadratic(Model& model) {
@@ -306,7 +334,8 @@ Model build_model(const TetMesh& mesh, const ModelSettings& settings,
   m.num_corner_nodes = static_cast<int>(mesh.points.size());
   m.mesh_node_of.resize(mesh.points.size());
   for (std::size_t i = 0; i < mesh.points.size(); ++i) m.mesh_node_of[i] = static_cast<int>(i);
-  // Elements grouped by tissue (stable within a tissue): every format then numbers them the same
+  // Elements grouped by tissue (stable within a tissue; reordered by node at the end with `rcm`):
+  // every format then numbers them the same
   // way (FEBio needs one contiguous block per tissue, Abaqus/CalculiX ids follow the model).
   std::vector<std::size_t> order(mesh.tets.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -353,7 +382,10 @@ Model build_model(const TetMesh& mesh, const ModelSettings& settings,
   }
   drop_fixed_from_sliding(m);
   // After make_quadratic and the set extension, so that midside nodes are renumbered too.
-  if (settings.node_order == NodeOrder::ReverseCuthillMcKee) renumber_nodes_rcm(m);
+  if (settings.node_order == NodeOrder::ReverseCuthillMcKee) {
+    renumber_nodes_rcm(m);
+    order_elements_by_lowest_node(m);
+  }
   validate_model(m);
   return m;
 }

@@ -1,9 +1,10 @@
 // build_model: TetMesh + ModelSettings + materials per tissue -> Model (core/model.h).
 //
-// Elements are grouped by tissue id (the mesh's order within a tissue). Nodes: with `node_order:
-// rcm` (the default) the corners are renumbered by reverse Cuthill-McKee on the corner graph
-// (core/node_ordering.h) and tet10 midside nodes follow them, ordered by the (lower, higher) new
-// index of their edge's ends; with `node_order: mesh` corners keep the mesh's order and midside
+// Elements are grouped by tissue id. Nodes: with `node_order: rcm` (the default) the corners are
+// renumbered by reverse Cuthill-McKee on the corner graph (core/node_ordering.h) and tet10
+// midside nodes follow them, ordered by the (lower, higher) new index of their edge's ends; the
+// elements of a tissue are then ordered by their lowest corner (nearby elements, nearby ids). With
+// `node_order: mesh` corners and elements keep the mesh's order (within a tissue) and midside
 // nodes follow in make_quadratic's order. Corners stay first either way (SOFA writes only them),
 // and Model::mesh_node_of maps each corner back to the mesh. Renumbering happens last, so every
 // selection below sees the mesh's numbering and selects the same points either way.

@@ -7,8 +7,9 @@
 //                                 #   (default): tet10 when a tissue has nu >= 0.49, else tet4
 //     node_order: rcm             # rcm (default): reverse Cuthill-McKee, a small matrix profile
 //                                 #   (FEBio's skyline solver without MKL); corners renumbered among
-//                                 #   themselves, tet10 midside nodes after them | mesh: keep
-//                                 #   the mesh's node order (core/node_ordering.h)
+//                                 #   themselves, tet10 midside nodes after them, a tissue's
+//                                 #   elements by lowest corner | mesh: keep the mesh's node and
+//                                 #   element order (core/node_ordering.h)
 //     node_sets:                  # each: a name, one selection, a constraint
 //       - name: chest_wall
 //         between: [muscle, outside]   # nodes on the interface between two sides; a side is a

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numeric>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -161,6 +163,24 @@ TEST(ModelBuilder, InterfaceSlidingNormalsAreAreaWeighted) {
   }
 }
 
+/// The kept-order (node_order: mesh) element at each position of the rcm model, by the contract
+/// of build_model: grouped by tissue, within a tissue by the lowest renumbered corner, ties in the
+/// mesh's order.
+std::vector<int> rcm_element_order(const Model& rcm, const Model& kept) {
+  std::vector<int> new_of_mesh(rcm.mesh_node_of.size());
+  for (std::size_t i = 0; i < rcm.mesh_node_of.size(); ++i) new_of_mesh[rcm.mesh_node_of[i]] = static_cast<int>(i);
+  std::vector<int> order(kept.elements.size()), lowest(kept.elements.size());
+  for (std::size_t e = 0; e < order.size(); ++e) {
+    order[e] = static_cast<int>(e);
+    lowest[e] = new_of_mesh[kept.elements[e][0]];
+    for (int k = 1; k < 4; ++k) lowest[e] = std::min(lowest[e], new_of_mesh[kept.elements[e][k]]);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+    return std::make_pair(kept.tissue_ids[x], lowest[x]) < std::make_pair(kept.tissue_ids[y], lowest[y]);
+  });
+  return order;
+}
+
 TEST(ModelBuilder, RcmIsTheDefaultAndKeepsTheMapBackToTheMesh) {
   EXPECT_EQ(ModelSettings{}.node_order, NodeOrder::ReverseCuthillMcKee);
   const TetMesh mesh = test::block_mesh();
@@ -174,10 +194,15 @@ TEST(ModelBuilder, RcmIsTheDefaultAndKeepsTheMapBackToTheMesh) {
   EXPECT_EQ(kept.mesh_node_of, identity);
   EXPECT_EQ(kept.nodes, mesh.points) << "node_order: mesh keeps the mesh's numbering";
   for (int i = 0; i < rcm.num_corner_nodes; ++i) EXPECT_EQ(rcm.nodes[i], mesh.points[rcm.mesh_node_of[i]]);
-  // Same elements in the same order, through the map.
+  // Same elements through the map, grouped by tissue and, within a tissue, by lowest node.
   ASSERT_EQ(rcm.elements.size(), kept.elements.size());
-  for (std::size_t e = 0; e < rcm.elements.size(); ++e)
-    for (int k = 0; k < 4; ++k) EXPECT_EQ(rcm.mesh_node_of[rcm.elements[e][k]], kept.elements[e][k]);
+  const std::vector<int> order = rcm_element_order(rcm, kept);
+  EXPECT_NE(order, [&] { std::vector<int> id(order.size()); std::iota(id.begin(), id.end(), 0); return id; }())
+      << "the block's elements should move";
+  for (std::size_t e = 0; e < rcm.elements.size(); ++e) {
+    EXPECT_EQ(rcm.tissue_ids[e], kept.tissue_ids[order[e]]);
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(rcm.mesh_node_of[rcm.elements[e][k]], kept.elements[order[e]][k]);
+  }
   EXPECT_EQ(block_in(NodeOrder::ReverseCuthillMcKee).nodes, rcm.nodes) << "deterministic";
   std::cout << "[ profile  ] block tet4: mesh order " << profile(kept) << ", rcm " << profile(rcm) << "\n";
   EXPECT_LT(profile(rcm), profile(kept));
@@ -192,14 +217,16 @@ TEST(ModelBuilder, RcmTet10KeepsCornersFirstAndSetsOnTheSamePoints) {
   ASSERT_EQ(rcm.num_corner_nodes, kept.num_corner_nodes);
   // Corners first (SOFA writes only them), and the corner block is RCM on the corner graph alone.
   const std::vector<int> corner_rcm = reverse_cuthill_mckee(kept.num_corner_nodes, kept.elements, 4);
+  const std::vector<int> order = rcm_element_order(rcm, kept);  // elements by tissue, then lowest node
   for (std::size_t e = 0; e < rcm.elements.size(); ++e) {
+    const int k_e = order[e];
     for (int k = 0; k < 4; ++k) {
       EXPECT_LT(rcm.elements[e][k], rcm.num_corner_nodes);
-      EXPECT_EQ(rcm.elements[e][k], corner_rcm[kept.elements[e][k]]);
+      EXPECT_EQ(rcm.elements[e][k], corner_rcm[kept.elements[k_e][k]]);
     }
     for (int k = 4; k < 10; ++k) EXPECT_GE(rcm.elements[e][k], rcm.num_corner_nodes);
-    EXPECT_EQ(element_volume(rcm, e), element_volume(kept, e)) << "element " << e;
-    for (int k = 0; k < 10; ++k) EXPECT_EQ(rcm.nodes[rcm.elements[e][k]], kept.nodes[kept.elements[e][k]]);
+    EXPECT_EQ(element_volume(rcm, e), element_volume(kept, k_e)) << "element " << e;
+    for (int k = 0; k < 10; ++k) EXPECT_EQ(rcm.nodes[rcm.elements[e][k]], kept.nodes[kept.elements[k_e][k]]);
   }
   // Midside nodes follow by (lower, higher) new index of their edge's ends.
   const int kEdge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
@@ -208,7 +235,7 @@ TEST(ModelBuilder, RcmTet10KeepsCornersFirstAndSetsOnTheSamePoints) {
     for (int k = 0; k < 6; ++k) ends[el[4 + k] - rcm.num_corner_nodes] = std::minmax(el[kEdge[k][0]], el[kEdge[k][1]]);
   EXPECT_TRUE(std::is_sorted(ends.begin(), ends.end()));
   EXPECT_TRUE(std::adjacent_find(ends.begin(), ends.end()) == ends.end()) << "one midside node per edge";
-  // Node sets: sorted, on the same points with the same normals; face sets untouched.
+  // Node sets: sorted, on the same points with the same normals.
   ASSERT_EQ(rcm.node_sets.size(), 2u);
   for (std::size_t s = 0; s < rcm.node_sets.size(); ++s) {
     const NodeSet& a = rcm.node_sets[s];
@@ -216,7 +243,14 @@ TEST(ModelBuilder, RcmTet10KeepsCornersFirstAndSetsOnTheSamePoints) {
     EXPECT_EQ(a.nodes.size(), kept.node_sets[s].nodes.size()) << a.name;
     EXPECT_EQ(by_point(rcm, a), by_point(kept, kept.node_sets[s])) << a.name;
   }
-  EXPECT_EQ(rcm.face_sets[0].faces, kept.face_sets[0].faces);
+  // Face sets: the same faces, their elements renumbered with the elements.
+  std::vector<int> position(order.size());
+  for (std::size_t e = 0; e < order.size(); ++e) position[order[e]] = static_cast<int>(e);
+  ASSERT_EQ(rcm.face_sets[0].faces.size(), kept.face_sets[0].faces.size());
+  for (std::size_t i = 0; i < rcm.face_sets[0].faces.size(); ++i) {
+    const auto& f = kept.face_sets[0].faces[i];
+    EXPECT_EQ(rcm.face_sets[0].faces[i], (std::array<int, 2>{position[f[0]], f[1]})) << "face " << i;
+  }
   std::cout << "[ profile  ] block tet10: mesh order " << profile(kept) << ", rcm (corners first) " << profile(rcm)
             << "\n";
   EXPECT_LT(profile(rcm), profile(kept));
