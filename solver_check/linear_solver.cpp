@@ -528,12 +528,15 @@ std::string SparseSpdSolver::numeric_factorisation() const {
   if (!impl_->analysed) return "none";
 #ifdef TISSUEMESH_HAVE_CHOLMOD
   if (impl_->use_cholmod && !impl_->numeric.empty()) {
+    const SupernodalCholesky& numeric = impl_->numeric;
     if (impl_->factorisation_threads == 1) return "SupernodalCholesky, 1 thread";
-    if (impl_->numeric.top_share() >= 1.0)
-      return "SupernodalCholesky, 2 threads (the tree does not split: its wide supernodes by panels on two, the rest on one)";
-    const int top = static_cast<int>(std::lround(100.0 * impl_->numeric.top_share()));
+    if (numeric.top_share() >= 1.0)
+      return numeric.panelled() ? "SupernodalCholesky, 2 threads (the tree does not split: its wide supernodes by "
+                                  "panels on two, the rest on one)"
+                                : "SupernodalCholesky, 1 thread (the tree does not split)";
+    const int top = static_cast<int>(std::lround(100.0 * numeric.top_share()));
     return "SupernodalCholesky, 2 threads (two subtrees at once, then the top separators, " + std::to_string(top) +
-           " % of the flops: the wide ones by panels on two)";
+           " % of the flops" + (numeric.panelled() ? ": the wide ones by panels on two)" : ", on one)");
   }
   if (impl_->use_cholmod) return "CHOLMOD";
 #endif

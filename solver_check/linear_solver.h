@@ -74,8 +74,10 @@ class SparseSpdSolver {
   /// "CHOLMOD supernodal LLT" or "Eigen SimplicialLDLT" (the factorisation).
   std::string name() const;
   /// Who computes the numeric factorisations: "SupernodalCholesky, 2 threads (two subtrees at
-  /// once, then the top separators, N % of the flops: ...)" or ", 1 thread", "CHOLMOD", "Eigen",
-  /// or "none" before the first.
+  /// once, then the top separators, N % of the flops: the wide ones by panels on two)" (", on
+  /// one)" when none is wide), "SupernodalCholesky, 2 threads (the tree does not split: its wide
+  /// supernodes by panels on two, the rest on one)", "SupernodalCholesky, 1 thread" (with "(the
+  /// tree does not split)" when that is why), "CHOLMOD", "Eigen", or "none" before the first.
   std::string numeric_factorisation() const;
   int factorisations() const { return factorisations_; }
   int shifted_factorisations() const { return shifted_; }

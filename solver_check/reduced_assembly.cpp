@@ -94,7 +94,9 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
       std::sort(begin, end);
       const auto unique_end = std::unique(begin, end);
       start[v] = kept;
-      kept = static_cast<int>(std::copy(begin, unique_end, upper.begin() + kept) - upper.begin());
+      const auto destination = upper.begin() + kept;  // at or before `begin`
+      if (destination != begin) std::copy(begin, unique_end, destination);
+      kept += static_cast<int>(unique_end - begin);
     }
     start[num_nodes] = kept;
     upper.resize(kept);

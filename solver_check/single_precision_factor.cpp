@@ -11,7 +11,6 @@
 namespace tissuemesh {
 namespace {
 
-using BlockMap = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>;
 using VectorMap = Eigen::Map<Eigen::VectorXf>;
 
 }  // namespace

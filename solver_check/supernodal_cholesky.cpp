@@ -31,7 +31,7 @@ namespace {
 
 /// Top supernodes with at least kPanelledColumns columns are factorised panel by panel, kPanel
 /// columns at a time, on two threads (SupernodalCholesky::factorise_panelled); narrower ones by one
-/// dpotrf and one dtrsm. On the 60K-tet benchmark model the top is one supernode of ~1,500
+/// dpotrf and one dtrsm. On the 60K-tet benchmark model the top is one supernode of 1,593
 /// columns with 29 % of the flops, which one dpotrf did on one thread while the other waited.
 constexpr int kPanelledColumns = 256;
 constexpr int kPanel = 128;
@@ -127,6 +127,7 @@ void SupernodalCholesky::plan(const SupernodalFactorView& f, const Eigen::Sparse
   std::int64_t top_size = 0;
   for (int s : next.split_.top) {
     top += work[s];
+    next.panelled_ = next.panelled_ || f.super[s + 1] - f.super[s] >= kPanelledColumns;
     next.top_offset_[s] = top_size;
     top_size += static_cast<std::int64_t>(f.pi[s + 1] - f.pi[s]) * (f.super[s + 1] - f.super[s]);
   }

@@ -8,7 +8,7 @@
 // count and stall on a busy machine). A nested-dissection ordering's tree splits below its top
 // separators into independent subtrees; here two threads factorise them at once, each calling
 // BLAS on one thread, and the top follows: its wide supernodes (the root separator of a 3D mesh:
-// ~1,600 columns and a third of the flops on the 60K-tet benchmark model) by panels on both
+// 1,593 columns and 29 % of the flops on the 60K-tet benchmark model) by panels on both
 // threads, the others on one. The root's dense factorisation took 37-43 ms of each ~160 ms
 // factorisation on one thread, 19-25 ms by panels on two.
 //
@@ -58,6 +58,8 @@ class SupernodalCholesky {
 
   /// Share of the estimated flops in the top part (after both bins; 1 when the tree does not split).
   double top_share() const { return top_share_; }
+  /// Whether the top has a supernode wide enough to be factorised by panels on two threads.
+  bool panelled() const { return panelled_; }
 
  private:
   /// Supernode d's update of supernode `target`: its rows at positions first .. last - 1 are the
@@ -93,6 +95,7 @@ class SupernodalCholesky {
   std::vector<double> product_[2];         ///< work space for an update, per thread
   std::vector<int> position_[2];           ///< row positions in the target, per thread
   double top_share_ = 1.0;
+  bool panelled_ = false;
 };
 
 }  // namespace tissuemesh

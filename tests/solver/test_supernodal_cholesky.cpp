@@ -109,8 +109,14 @@ TEST(SupernodalCholesky, FactorisesAWideTopSupernodeByPanels) {
   EXPECT_GT(planned.top_share(), 0.9);  // the wide separator is the top's
   expect_factor(f, 0.0);
   expect_factor(f, 1.5);
+  // The same pattern with the separator's column 200 (in its second panel) not positive definite
+  // while both leaves are: the failure is found in a panel, on 1 and 2 threads, and the next
+  // matrix factorises again.
   const SparseMatrix K = lower(f.A);
-  EXPECT_FALSE(planned.factorise(K, -30.0, 2));  // a negative pivot in a panel
+  SparseMatrix indefinite = K;
+  indefinite.coeffRef(f.perm[200], f.perm[200]) = -50.0;
+  EXPECT_FALSE(planned.factorise(indefinite, 0.0, 2));
+  EXPECT_FALSE(planned.factorise(indefinite, 0.0, 1));
   EXPECT_TRUE(planned.factorise(K, 0.0, 2));
 }
 
