@@ -334,9 +334,9 @@ Model build_model(const TetMesh& mesh, const ModelSettings& settings,
   m.num_corner_nodes = static_cast<int>(mesh.points.size());
   m.mesh_node_of.resize(mesh.points.size());
   for (std::size_t i = 0; i < mesh.points.size(); ++i) m.mesh_node_of[i] = static_cast<int>(i);
-  // Elements grouped by tissue (stable within a tissue; reordered by node at the end with `rcm`):
-  // every format then numbers them the same
-  // way (FEBio needs one contiguous block per tissue, Abaqus/CalculiX ids follow the model).
+  // Elements grouped by tissue (stable within a tissue; by lowest node at the end with `rcm`): every
+  // format then numbers them the same way (FEBio needs one contiguous block per tissue,
+  // Abaqus/CalculiX ids follow the model).
   std::vector<std::size_t> order(mesh.tets.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(),

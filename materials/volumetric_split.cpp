@@ -14,22 +14,20 @@ class ShearPart : public HyperelasticLaw {
  public:
   explicit ShearPart(const HyperelasticLaw& full) : full_(full) {}
   std::string name() const override { return full_.name() + " without U(J)"; }
-  double energy(const Eigen::Matrix3d& C) const override {
-    return full_.energy(C) - full_.volumetric(std::sqrt(C.determinant())).U;
-  }
+  double energy(const Eigen::Matrix3d& C) const override { return evaluate(C, nullptr, nullptr); }
   Eigen::Matrix3d pk2(const Eigen::Matrix3d& C) const override {
-    const double J = std::sqrt(C.determinant());
-    return full_.pk2(C) - J * full_.volumetric(J).dU * C.inverse();
+    Eigen::Matrix3d S;
+    evaluate(C, &S, nullptr);
+    return S;
   }
   Tangent6 tangent(const Eigen::Matrix3d& C) const override {
-    const double J = std::sqrt(C.determinant());
-    const Volumetric v = full_.volumetric(J);
-    const Eigen::Matrix3d Ci = C.inverse();
-    return full_.tangent(C) - J * (v.dU + J * v.d2U) * tensor4::outer(Ci, Ci) +
-           2.0 * J * v.dU * tensor4::sym_product(Ci);
+    Tangent6 CC;
+    evaluate(C, nullptr, &CC);
+    return CC;
   }
+  // W - U, S - J U' C^-1 and CC - J (U' + J U'') C^-1 (x) C^-1 + 2 J U' C^-1 (.) C^-1, from the
+  // full law's (the three calls above give the same values through this one).
   double evaluate(const Eigen::Matrix3d& C, Eigen::Matrix3d* S, Tangent6* CC) const override {
-    // The same expressions as the three calls above, in the same order (bit for bit).
     const double W = full_.evaluate(C, S, CC);
     const double J = std::sqrt(C.determinant());
     const Volumetric v = full_.volumetric(J);

@@ -184,11 +184,7 @@ ReducedAssembly::ReducedAssembly(ElementOrder order, const std::vector<std::arra
           const int w = nodes[i], v = nodes[j];
           for (int k = 0; k < dofs.count(v); ++k) {
             if (dofs.count(w) == 0) break;
-            const int c = dofs.first(v) + k;
-            const int r = dofs.first(w) + (w == v ? k : 0);
-            const int* begin = inner.data() + outer[c];
-            const int* end = inner.data() + outer[c + 1];
-            patch_slots_.push_back(static_cast<int>(std::lower_bound(begin, end, r) - inner.data()));
+            patch_slots_.push_back(slot_of(v, k, w, w == v ? k : 0));  // patch nodes are sorted: w >= v
           }
         }
     }
