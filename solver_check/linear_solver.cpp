@@ -200,12 +200,15 @@ struct SparseSpdSolver::Impl {
   /// factor of a shifted K is a poor one for the next K (measured: CG then needs more than
   /// kMaxIterations every time), so after it the next solve factorises straight away.
   bool exact_factor = false;
-  /// First rung of the shift ladder: the shift that worked last time, one rung lower after two
-  /// unshifted factorisations in a row. A failed rung costs up to a full factorisation (CHOLMOD
-  /// stops at the first non-positive pivot, often late), and the tangent's indefiniteness
-  /// changes slowly along a solve (on the benchmark model every shifted factorisation needed
-  /// 1e-2 and was followed by one unshifted one); a larger shift than needed damps the soft
-  /// modes' steps (measured: the demo's increments then stall), hence the step back down.
+  /// First rung of the shift ladder (relative to mean|K_ii|): the shift that worked last time,
+  /// the estimate's included, one rung lower after two unshifted factorisations in a row. A
+  /// failed rung costs up to a full factorisation (CHOLMOD stops at the first non-positive pivot,
+  /// often late), and the tangent's indefiniteness changes slowly along a solve; a larger shift
+  /// than needed damps the soft modes' steps (measured: the demo's increments then stall), hence
+  /// the step back down. Measured (2026-11-27): after the estimate's shift (3e-3) worked, the
+  /// next Newton iteration's tangent was still indefinite; a ladder restarted at 1e-8 failed at
+  /// 1e-8, 1e-6 and 1e-4 before 1e-2 worked (2.6 s of factorisations on the demo); started at the
+  /// estimate's shift, failed factorisations fell from 5 to 2 with nodal pressure, 6 to 5 supine.
   double sigma_start = kMinShift;
   bool last_shifted = false;  ///< the last factorisation was shifted
 #ifdef TISSUEMESH_HAVE_CHOLMOD
@@ -283,7 +286,7 @@ struct SparseSpdSolver::Impl {
   /// Factorises K; returns false when nothing works. CHOLMOD: when K is not positive definite
   /// (CG has proved it: the unshifted attempt is skipped), first K + kEstimateMargin x
   /// estimated_shift I when there is an estimate, then the shift ladder K + sigma * mean|K_ii| I,
-  /// sigma = 1e-8, 1e-6, ... 1e-2, started at sigma_start, skipping the rungs that must fail: below
+  /// sigma = sigma_start, 100 sigma_start, ... kMaxShift, skipping the rungs that must fail: below
   /// proven_shift (p^T (K + s I) p < 0 for every s below it) or a shift that failed already.
   bool factorise(const SparseMatrix& K, Indefiniteness indefinite, int& shifted, int& failed) {
     exact_factor = false;
@@ -327,28 +330,32 @@ struct SparseSpdSolver::Impl {
         ++failed;
       }
       double must_fail = indefinite.proven_shift;  // shifts up to this fail
+      const double mean_diagonal = K.diagonal().cwiseAbs().mean();
       if (indefinite.estimated_shift > 0.0) {
         const double shift = std::max(kEstimateMargin * indefinite.estimated_shift, indefinite.proven_shift);
         if (factorise_shifted(K, shift)) {
           ++shifted;
+          const double sigma = shift / mean_diagonal;
+          if (std::isfinite(sigma)) sigma_start = std::clamp(sigma, kMinShift, kMaxShift);
           last_shifted = true;
           return true;
         }
         ++failed;
         must_fail = shift;
       }
-      const double mean_diagonal = K.diagonal().cwiseAbs().mean();
-      for (double sigma = sigma_start; sigma <= kMaxShift * (1.0 + 1e-9); sigma *= kShiftFactor) {
-        if (sigma * mean_diagonal <= must_fail) continue;
-        if (factorise_shifted(K, sigma * mean_diagonal)) {
-          ++shifted;
-          sigma_start = sigma;
-          last_shifted = true;
-          return true;
+      // sigma_start, kShiftFactor times that, ... and kMaxShift last.
+      for (double sigma = sigma_start;; sigma = std::min(kMaxShift, sigma * kShiftFactor)) {
+        if (sigma * mean_diagonal > must_fail) {
+          if (factorise_shifted(K, sigma * mean_diagonal)) {
+            ++shifted;
+            sigma_start = sigma;
+            last_shifted = true;
+            return true;
+          }
+          ++failed;
         }
-        ++failed;
+        if (!(sigma < kMaxShift)) return false;
       }
-      return false;
     }
 #endif
     (void)indefinite;

@@ -30,9 +30,10 @@
 //                   eigenvalue lambda_min, and the shift is 5 |rho| (rho: the estimate's Rayleigh
 //                   quotient, |rho| <= |lambda_min|; at least CG's proven bound below); if that
 //                   fails, or without an estimate, the shift is
-//                   sigma * mean|K_ii|, sigma on the ladder 1e-8, 1e-6, ... 1e-2. The ladder
-//                   starts where it succeeded last (each failed rung costs up to a factorisation)
-//                   and skips the rungs that must fail: below -p^T K p / p^T p, which K + s I
+//                   sigma * mean|K_ii|, sigma on a ladder of factors of 100 that ends at 1e-2.
+//                   The ladder starts at the shift that succeeded last, the estimate's included
+//                   (each failed rung costs up to a factorisation; 1e-8 before any shift), and
+//                   skips the rungs that must fail: below -p^T K p / p^T p, which K + s I
 //                   cannot survive, or at most a shift that failed. A shifted factor is not kept
 //                   as the next preconditioner.
 //   SimplicialLDLT  Eigen's sparse LDL^T (AMD ordering); copes with an indefinite K directly.
