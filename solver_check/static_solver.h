@@ -23,8 +23,9 @@
 //   diverges or produces a non-finite value, an element inverts (J <= 0), the linear solve fails,
 //   or more than max_newton_iterations are needed) is retried with half the increment; the
 //   increment never drops below min_step_fraction (then the solve stops, converged = false).
-//   An increment that converged in at most 4 Newton iterations doubles the next one (up to the
-//   rest of the load): load_steps sets the first increment, not the number of increments.
+//   An increment that converged in at most 4 Newton iterations doubles the next one, in at most
+//   3 quadruples it (up to the rest of the load): load_steps sets the first increment, not the
+//   number of increments.
 //   At most max_load_steps increments are attempted, cut-backs included.
 // - Newton-Raphson with the consistent tangent. Each direction solves K dq = R to a relative
 //   residual eta = ||R|| / scale clamped to [1e-4, 1e-2] (inexact Newton;
