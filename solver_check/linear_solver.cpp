@@ -31,6 +31,22 @@ namespace {
 /// far from the factorised one: refactorising then also speeds up the following Newton steps.
 constexpr int kMaxIterations = 25;
 
+/// When the last CG solve on the kept factor took more than kAgedShare of a factorisation's cost
+/// (counted in CG iterations), the factor has aged: the next solve factorises straight away (CG's
+/// counts grow as the tangent moves away from the factorised one, e.g. 9, 17, 17 over one
+/// increment, and a new factor makes the following solves short again). The cost of a
+/// factorisation in CG iterations is estimated from the symbolic analysis' counts, so the rule is
+/// deterministic: factor_flops / (kFlopsPerStreamedEntry x factor_entries), as a factorisation ran
+/// at ~35 GFlop/s and the single-precision solves (each iteration streams the factor twice) at
+/// ~9 GB/s on the 2-core benchmark machine: estimated 16 iterations for the benchmark model
+/// (measured 13-14) and 33 for the demo (measured ~27). CHOLMOD only (Eigen's LDLT counts no
+/// flops). Measured (2026-11-27, 4 alternating runs on the benchmark model): 12 Newton
+/// iterations either way, 5 factorisations and 50 CG iterations instead of 3 and 105, solve
+/// 2.15-2.63 s instead of 2.54-3.02 s; on the 7 models of the load-stepping measurement
+/// (static_solver.cpp) no Newton path got longer.
+constexpr double kFlopsPerStreamedEntry = 31.0;
+constexpr double kAgedShare = 0.5;
+
 /// First shift tried for a tangent that CG proved indefinite: kEstimateMargin x |rho|, rho the
 /// Rayleigh quotient LOBPCG reaches for K's lowest eigenvalue (lowest_eigenvalue below). rho never
 /// lies below the lowest eigenvalue lambda_min and approaches it from above, so |rho| <= |lambda_min|:
@@ -211,6 +227,13 @@ struct SparseSpdSolver::Impl {
   /// estimate's shift, failed factorisations fell from 5 to 2 with nodal pressure, 6 to 5 supine.
   double sigma_start = kMinShift;
   bool last_shifted = false;  ///< the last factorisation was shifted
+  int last_cg_iterations = 0;  ///< of the last CG solve since the last factorisation (0: none)
+
+  /// The kept factor has aged (kAgedShare): factorise instead of iterating.
+  bool factor_aged() const {
+    if (!(factor_flops > 0.0 && factor_entries > 0.0)) return false;
+    return last_cg_iterations > kAgedShare * factor_flops / (kFlopsPerStreamedEntry * factor_entries);
+  }
 #ifdef TISSUEMESH_HAVE_CHOLMOD
   CholmodLLT cholmod;
   /// The kept exact factorisation in single precision (in cholmod's own storage): CG's
@@ -559,14 +582,17 @@ bool SparseSpdSolver::solve(const SparseMatrix& K, const Eigen::VectorXd& b, Eig
     x.resize(0);
     return true;
   }
-  // 1. The kept factorisation of an unshifted K as preconditioner. Negative curvature proves K
-  // indefinite: the factorisation below then goes straight to a shift, estimated from K's lowest
-  // eigenvalue (with CHOLMOD, whose shifted factorisation can fail).
+  // 1. The kept factorisation of an unshifted K as preconditioner, unless it has aged (the last
+  // CG solve was long: kAgedShare). Negative curvature proves K indefinite: the factorisation
+  // below then goes straight to a shift, estimated from K's lowest eigenvalue (with CHOLMOD,
+  // whose shifted factorisation can fail).
   Impl::Indefiniteness indefinite;
-  if (impl_->exact_factor) {
+  if (impl_->exact_factor && !impl_->factor_aged()) {
     Eigen::VectorXd negative;
+    const int before = iterations_;
     const Impl::CgOutcome outcome =
         impl_->pcg(K, b, x, rtol, kMaxIterations, iterations_, indefinite.proven_shift, negative);
+    impl_->last_cg_iterations = iterations_ - before;
     if (outcome == Impl::CgOutcome::Converged) return true;
     indefinite.known = outcome == Impl::CgOutcome::NegativeCurvature;
     if (indefinite.known && impl_->use_cholmod) {
@@ -581,6 +607,7 @@ bool SparseSpdSolver::solve(const SparseMatrix& K, const Eigen::VectorXd& b, Eig
   factorisation_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
                             (impl_->analysis_seconds - analysed_before);
   if (!factorised) return false;
+  impl_->last_cg_iterations = 0;
   ++factorisations_;
   // 3. The direct solve; with a shifted factor (K is not positive definite) the damped step.
   x = impl_->apply_factor(b);
