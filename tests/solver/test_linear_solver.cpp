@@ -2,8 +2,9 @@
 // requested residual, and the shifted (damped) step for a tangent that is not positive definite:
 // which shift, how many attempts, and the attempts it saves (skipped unshifted try and rungs
 // below the shift CG's direction of negative curvature proves too small, ladder started at the
-// last working shift), the same factor whatever OpenBLAS's thread count, and the ordering of a
-// node's unknowns together (DofMap::node_groups).
+// last working shift, the estimate's included, and ended at its largest rung from any start), a
+// new factorisation once CG has cost half of one, the same factor whatever OpenBLAS's thread
+// count, and the ordering of a node's unknowns together (DofMap::node_groups).
 #include "solver_check/linear_solver.h"
 
 #include "block_assembly.h"
@@ -161,6 +162,75 @@ TEST_F(CholmodSolver, CoupledNegativeModeIsShiftedByItsEstimatedEigenvalue) {
   EXPECT_LE(s, 5.0 * -lowest * (1.0 + kRelativeRoundoff));
   EXPECT_LT((Kx + s * x - b).norm(), kRelativeRoundoff * b.norm() / (s + lowest));
   EXPECT_GT(b.dot(x), 0.0);  // a descent direction of the energy whose gradient is -b
+}
+
+// After the estimate's shift worked, the same indefinite K again (as after a damped Newton step
+// whose tangent is still indefinite): no kept factor, so the unshifted try fails, and the ladder
+// starts at the estimate's shift, which works. A ladder restarted at 1e-8 x mean|K_ii| would also
+// fail at 1e-8, 1e-6 and 1e-4 (|lambda_min| = 1.05e-3 on a diagonal of 1.995).
+TEST_F(CholmodSolver, LadderStartsAtTheEstimatedShiftThatWorked) {
+  SparseSpdSolver solver(LinearSolverKind::Cholmod);
+  const Eigen::VectorXd b = ramp();
+  Eigen::VectorXd x, again;
+  ASSERT_TRUE(solver.solve(laplacian(-0.1), b, x, 1e-4));
+  const SparseMatrix K = laplacian(0.005);
+  ASSERT_TRUE(solver.solve(K, b, x, 1e-4));
+  ASSERT_EQ(solver.shifted_factorisations(), 1);
+  ASSERT_EQ(solver.failed_factorisations(), 0);
+  ASSERT_TRUE(solver.solve(K, b, again, 1e-4));
+  EXPECT_EQ(solver.failed_factorisations(), 1);  // the unshifted try only
+  EXPECT_EQ(solver.shifted_factorisations(), 2);
+  const auto shift_of = [&](const Eigen::VectorXd& y) {  // s in (K + s I) y = b
+    return (b - K.selfadjointView<Eigen::Lower>() * y).dot(y) / y.squaredNorm();
+  };
+  EXPECT_NEAR(shift_of(again), shift_of(x), kRelativeRoundoff * shift_of(x));
+}
+
+// From any start the ladder ends at its largest rung, 1e-2 x mean|K_ii|. The first solve leaves
+// the estimate's shift (1.05e-3 .. 5.25e-3) as the ladder's start; the next K needs more than
+// 0.01 (lambda_min = -0.01): the start fails, the next rung (100 x the start, above 1e-2) is
+// clipped to 1e-2 x 1.986 = 0.0199, which works.
+TEST_F(CholmodSolver, LadderEndsAtItsLargestShiftFromAnyStart) {
+  const double pi = std::acos(-1.0);
+  const double c = 2.0 - 2.0 * std::cos(pi / (kSize + 1)) + 0.01;  // lambda_min = -0.01
+  ASSERT_GT(2.0 - c - 2.0 * std::cos(2.0 * pi / (kSize + 1)), 0.0);
+  SparseSpdSolver solver(LinearSolverKind::Cholmod);
+  const Eigen::VectorXd b = ramp();
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.solve(laplacian(-0.1), b, x, 1e-4));
+  ASSERT_TRUE(solver.solve(laplacian(0.005), b, x, 1e-4));
+  ASSERT_EQ(solver.shifted_factorisations(), 1);
+  const SparseMatrix K = laplacian(c);
+  ASSERT_TRUE(solver.solve(K, b, x, 1e-4));
+  EXPECT_EQ(solver.failed_factorisations(), 2);  // unshifted, then the start
+  EXPECT_EQ(solver.shifted_factorisations(), 2);
+  const double s = (b - K.selfadjointView<Eigen::Lower>() * x).dot(x) / x.squaredNorm();
+  const double largest = 1e-2 * K.diagonal().cwiseAbs().mean();
+  EXPECT_NEAR(s, largest, kRelativeRoundoff * largest);
+}
+
+// CG on an old factor of a K far from the current one takes more iterations than half the
+// documented estimate of a factorisation's cost (factor_flops / (31 factor_entries) iterations):
+// the next solve factorises at once (a direct solve, no CG iteration), and the new factor then
+// preconditions the solves after it.
+TEST_F(CholmodSolver, FactorisesAtOnceAfterIterationsCostingHalfAFactorisation) {
+  SparseSpdSolver solver(LinearSolverKind::Cholmod);
+  const Eigen::VectorXd b = ramp();
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.solve(matrix(3.0, 1.0), b, x, 1e-4));
+  const SparseMatrix K = matrix(2.2, 4.0);
+  ASSERT_TRUE(solver.solve(K, b, x, 1e-8));
+  const int iterations = solver.iterations();
+  ASSERT_EQ(solver.factorisations(), 1);
+  ASSERT_GT(iterations, 0.5 * solver.factor_flops() / (31.0 * solver.factor_entries()));
+  ASSERT_TRUE(solver.solve(K, b, x, 1e-8));
+  EXPECT_EQ(solver.factorisations(), 2);
+  EXPECT_EQ(solver.iterations(), iterations);
+  EXPECT_LT(relative_residual(K, x, b), kRelativeRoundoff);  // the direct solve
+  // The fresh factor is K's own: the next solve iterates on it, to the requested residual.
+  ASSERT_TRUE(solver.solve(matrix(2.21, 4.0), b, x, 1e-8));
+  EXPECT_EQ(solver.factorisations(), 2);
+  EXPECT_LE(relative_residual(matrix(2.21, 4.0), x, b), 1e-8);
 }
 
 // The factor of the tridiagonal K (49 unknowns) plus a decoupled one has no fill with a

@@ -1,6 +1,7 @@
 // The built-in static solver (solver_check/static_solver.h) on the hanging block of
 // tests/support/model_fixture.h: equilibrium with the weight, direction of the sag, agreement with
-// CalculiX on the same deck and energy, linear scaling at tiny loads, refusals.
+// CalculiX on the same deck and energy, linear scaling at tiny loads, the growth of load
+// increments, refusals.
 #include "solver_check/static_solver.h"
 
 #include "fe_export/abaqus/write_abaqus.h"
@@ -193,6 +194,25 @@ TEST_P(SmallLoad, ScalesLinearly) {
 
 INSTANTIATE_TEST_SUITE_P(Block, SmallLoad, ::testing::Values(ElementOrder::Linear, ElementOrder::Quadratic),
                          [](const auto& info) { return std::string(name(info.param)); });
+
+// Load stepping (static_solver.h): under its own gravity the block converges every increment in
+// at most 3 Newton iterations (3, 2, 2 when measured), so the next increment is four times as
+// large, clipped to the rest of the load: 0.1, then 0.4 (to 0.5), then the remaining 0.5
+// (doubling would give 0.1, 0.3, 0.7, 1.0).
+TEST(LoadStepping, QuickIncrementsQuadrupleTheNextUpToTheRestOfTheLoad) {
+  Model model = block(ElementOrder::Linear);
+  model.analysis.load_steps = 10;
+  const SolveResult r = solve_static(model);
+  ASSERT_TRUE(r.converged) << r.message;
+  ASSERT_EQ(r.steps.size(), 3u);
+  const double expected[] = {0.1, 0.5, 1.0};
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_TRUE(r.steps[i].accepted);
+    EXPECT_LE(r.steps[i].iterations, 3) << i;
+    // The targets are sums of increments: exact up to a few roundings.
+    EXPECT_NEAR(r.steps[i].load_fraction, expected[i], test::kRelativeRoundoff) << i;
+  }
+}
 
 /// The message of the exception `solve_static(model)` throws, checked to be of type E.
 template <class E>
