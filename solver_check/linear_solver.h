@@ -12,7 +12,8 @@
 // K is factorised anew and solved directly when CG needs more than 25 iterations or meets
 // non-positive curvature, and straight away when the last CG solve took more than half a
 // factorisation's cost, estimated as factor_flops() / (31 factor_entries()) iterations with
-// CHOLMOD (the factor has aged; linear_solver.cpp, kAgedShare, says why). With CHOLMOD, CG applies the kept factor converted to single precision, on two threads
+// CHOLMOD (the factor has aged; linear_solver.cpp, kAgedShare, says why). With CHOLMOD, CG
+// applies the kept factor converted to single precision, on two threads
 // (solver_check/single_precision_factor.h: half the bytes to stream, two subtrees at once; on the
 // benchmark model 4.2 ms per application instead of ~10 ms); the direct solves use the factor itself. The answer is the same up to the requested relative residual ||K x - b|| <= rtol ||b||
 // (the Newton loop's inexactness), except for a K that is not positive definite (below).

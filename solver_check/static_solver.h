@@ -32,10 +32,11 @@
 //   solver_check/linear_solver.h): conjugate gradients preconditioned by the last factorisation
 //   of the tangent, and a new factorisation (CHOLMOD's supernodal Cholesky when the build has it,
 //   else Eigen::SimplicialLDLT; symbolic analysis done once) only when CG does not get there in
-//   25 iterations or its last solve took more than half a factorisation's cost; a tangent that is not positive definite gives a damped (shifted) step. Backtracking line search: step lengths 1, 1/2, ... 1/16,
-//   the first that keeps every element un-inverted and lowers either the potential energy
-//   W(u) - load . u or ||R|| is taken; when none does, the un-inverted trial with the smallest
-//   ||R|| is taken. A full step predicted to end its increment (it meets the displacement test,
+//   25 iterations or its last solve took more than half a factorisation's cost; a tangent that
+//   is not positive definite gives a damped (shifted) step. Backtracking line search: step
+//   lengths 1, 1/2, ... 1/16, the first that keeps every element un-inverted and lowers either
+//   the potential energy W(u) - load . u or ||R|| is taken; when none does, the un-inverted trial
+//   with the smallest ||R|| is taken. A full step predicted to end its increment (it meets the displacement test,
 //   and its residual predicted as forcing x ||R|| meets the residual test) is evaluated for its
 //   force alone, its tangent being of no use there; when it falls short, the tangent follows.
 // - each increment starts from a secant prediction (the last increment's change, scaled), or
