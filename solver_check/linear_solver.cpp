@@ -355,6 +355,7 @@ struct SparseSpdSolver::Impl {
       }
       double must_fail = indefinite.proven_shift;  // shifts up to this fail
       const double mean_diagonal = K.diagonal().cwiseAbs().mean();
+      if (!(std::isfinite(mean_diagonal) && mean_diagonal > 0.0)) return false;  // no scale for a shift
       if (indefinite.estimated_shift > 0.0) {
         const double shift = std::max(kEstimateMargin * indefinite.estimated_shift, indefinite.proven_shift);
         if (factorise_shifted(K, shift)) {
@@ -367,8 +368,10 @@ struct SparseSpdSolver::Impl {
         ++failed;
         must_fail = shift;
       }
-      // sigma_start, kShiftFactor times that, ... and kMaxShift last.
-      for (double sigma = sigma_start;; sigma = std::min(kMaxShift, sigma * kShiftFactor)) {
+      // sigma_start, kShiftFactor times that, ... and kMaxShift last; a rung within rounding of
+      // kMaxShift is kMaxShift (1e-8 x 100^3 is 0.009999999999999998: it would be tried twice).
+      for (double sigma = std::max(sigma_start, kMinShift);; sigma *= kShiftFactor) {
+        if (sigma >= kMaxShift * (1.0 - 1e-9)) sigma = kMaxShift;
         if (sigma * mean_diagonal > must_fail) {
           if (factorise_shifted(K, sigma * mean_diagonal)) {
             ++shifted;

@@ -12,11 +12,13 @@
 // K is factorised anew and solved directly when CG needs more than 25 iterations or meets
 // non-positive curvature, and straight away when the last CG solve took more than half a
 // factorisation's cost, estimated as factor_flops() / (31 factor_entries()) iterations with
-// CHOLMOD (the factor has aged; linear_solver.cpp, kAgedShare, says why). With CHOLMOD, CG
-// applies the kept factor converted to single precision, on two threads
-// (solver_check/single_precision_factor.h: half the bytes to stream, two subtrees at once; on the
-// benchmark model 4.2 ms per application instead of ~10 ms); the direct solves use the factor itself. The answer is the same up to the requested relative residual ||K x - b|| <= rtol ||b||
-// (the Newton loop's inexactness), except for a K that is not positive definite (below).
+// CHOLMOD (the factor has aged; linear_solver.cpp, kAgedShare, says why; for small factors the
+// estimate is below one iteration, so any CG solve ages them). With CHOLMOD, CG applies the kept
+// factor converted to single precision, on two threads (solver_check/single_precision_factor.h:
+// half the bytes to stream, two subtrees at once; on the benchmark model 4.2 ms per application
+// instead of ~10 ms); the direct solves use the factor itself. The answer is the same up to the
+// requested relative residual ||K x - b|| <= rtol ||b|| (the Newton loop's inexactness), except
+// for a K that is not positive definite (below).
 //   Cholmod         CHOLMOD's supernodal Cholesky (Eigen::CholmodSupernodalLLT; METIS on the
 //                   graph of the unknown groups when given, else CHOLMOD's own AMD/METIS choice;
 //                   supernodes amalgamated twice as coarsely as its default). CHOLMOD analyses
@@ -24,21 +26,23 @@
 //                   SupernodalCholesky's (supernodal_cholesky.h: two subtrees on two threads;
 //                   CHOLMOD's own if the factor's layout is refused). Measured on the 60K-tet
 //                   benchmark model: 5 factorisations 0.74-0.89 s instead of 1.71-1.85 s with
-//                   CHOLMOD's, the same Newton path. A K that is not positive definite (soft tissue in compression,
-//                   far from equilibrium: CG met negative curvature, or CHOLMOD found a
-//                   non-positive pivot) is factorised with a diagonal shift, and that factor's
-//                   solution is the step (a damped, energy-descending step as in
+//                   CHOLMOD's, the same Newton path. A K that is not positive definite (soft
+//                   tissue in compression, far from equilibrium: CG met negative curvature, or
+//                   CHOLMOD found a non-positive pivot) is factorised with a diagonal shift, and
+//                   that factor's solution is the step (a damped, energy-descending step as in
 //                   Levenberg-Marquardt). When CG met negative curvature along p, a few LOBPCG
 //                   iterations from p (preconditioned by the kept factor) estimate K's lowest
 //                   eigenvalue lambda_min, and the shift is 5 |rho| (rho: the estimate's Rayleigh
 //                   quotient, |rho| <= |lambda_min|; at least CG's proven bound below); if that
-//                   fails, or without an estimate, the shift is
+//                   fails, or without an estimate (no kept factor, or an aged one: CG did not
+//                   run, and the unshifted attempt is what finds K indefinite), the shift is
 //                   sigma * mean|K_ii|, sigma on a ladder of factors of 100 that ends at 1e-2.
 //                   The ladder starts at the shift that succeeded last, the estimate's included
-//                   (each failed rung costs up to a factorisation; 1e-8 before any shift), and
-//                   skips the rungs that must fail: below -p^T K p / p^T p, which K + s I
-//                   cannot survive, or at most a shift that failed. A shifted factor is not kept
-//                   as the next preconditioner.
+//                   (clamped to [1e-8, 1e-2]; 1e-8 before any shift), one rung lower after two
+//                   unshifted factorisations in a row (each failed rung costs up to a
+//                   factorisation), tries each rung once, and skips the rungs that must fail:
+//                   below -p^T K p / p^T p, which K + s I cannot survive, or at most a shift that
+//                   failed. A shifted factor is not kept as the next preconditioner.
 //   SimplicialLDLT  Eigen's sparse LDL^T (AMD ordering); copes with an indefinite K directly.
 // solve() returns false (never throws) when nothing gives a finite solution.
 #pragma once

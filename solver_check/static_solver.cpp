@@ -28,7 +28,8 @@ using Clock = std::chrono::steady_clock;
 /// demo, the coarse phantom as tet4 and tet10), quadrupling against doubling after 3 iterations:
 /// Newton iterations 15 -> 12 and factorisations 5 -> 3 (benchmark), 20 -> 12 and 5 -> 3 (supine:
 /// no cut-back any more), 15 -> 13 and 5 -> 4 (demo), 14 -> 11 (coarse tet4), the same on the
-/// other three.
+/// other three. Right after a cut-back an increment grows at most back to the size that failed
+/// (doubling), so that failures and cut-backs do not alternate.
 constexpr int kEasyIterations = 4;
 constexpr int kQuickIterations = 3;
 
@@ -336,6 +337,7 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   state.f_int = Eigen::VectorXd::Zero(problem.f_ext.size());
   Eigen::VectorXd previous_q = state.q;  // accepted state before the last one (for the predictor)
   double previous_increment = 0.0;
+  bool after_cut_back = false;  // the last attempt failed and was halved
   double lambda = 0.0, increment = 1.0 / s.load_steps;
   bool failed = false;
   while (lambda < 1.0) {
@@ -367,14 +369,16 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
       previous_increment = record.increment;
       state = std::move(next);
       lambda = target;
-      if (record.iterations <= kQuickIterations)
+      if (record.iterations <= kQuickIterations && !after_cut_back)
         increment = std::min(1.0, 4.0 * increment);
       else if (record.iterations <= kEasyIterations)
         increment = std::min(1.0, 2.0 * increment);
+      after_cut_back = false;
       result.steps.push_back(std::move(record));
       continue;
     }
     previous_increment = 0.0;  // no extrapolation across a cut-back
+    after_cut_back = true;
     const std::string note = record.note;
     result.steps.push_back(std::move(record));
     increment *= 0.5;

@@ -24,21 +24,23 @@
 //   or more than max_newton_iterations are needed) is retried with half the increment; the
 //   increment never drops below min_step_fraction (then the solve stops, converged = false).
 //   An increment that converged in at most 4 Newton iterations doubles the next one, in at most
-//   3 quadruples it (up to the rest of the load): load_steps sets the first increment, not the
+//   3 quadruples it, except right after a cut-back, when it doubles (back to the size that
+//   failed); never beyond the rest of the load: load_steps sets the first increment, not the
 //   number of increments.
 //   At most max_load_steps increments are attempted, cut-backs included.
 // - Newton-Raphson with the consistent tangent. Each direction solves K dq = R to a relative
 //   residual eta = ||R|| / scale clamped to [1e-4, 1e-2] (inexact Newton;
 //   solver_check/linear_solver.h): conjugate gradients preconditioned by the last factorisation
 //   of the tangent, and a new factorisation (CHOLMOD's supernodal Cholesky when the build has it,
-//   else Eigen::SimplicialLDLT; symbolic analysis done once) only when CG does not get there in
-//   25 iterations or its last solve took more than half a factorisation's cost; a tangent that
-//   is not positive definite gives a damped (shifted) step. Backtracking line search: step
-//   lengths 1, 1/2, ... 1/16, the first that keeps every element un-inverted and lowers either
-//   the potential energy W(u) - load . u or ||R|| is taken; when none does, the un-inverted trial
-//   with the smallest ||R|| is taken. A full step predicted to end its increment (it meets the displacement test,
-//   and its residual predicted as forcing x ||R|| meets the residual test) is evaluated for its
-//   force alone, its tangent being of no use there; when it falls short, the tangent follows.
+//   else Eigen::SimplicialLDLT; symbolic analysis done once) only when CG does not get there in 25
+//   iterations or (CHOLMOD) its last solve took more than half a factorisation's cost; a tangent
+//   that is not positive definite gives a damped (shifted) step. Backtracking line search: step
+//   lengths 1, 1/2, ... 1/16, the first that keeps every element un-inverted and lowers either the
+//   potential energy W(u) - load . u or ||R|| is taken; when none does, the un-inverted trial with
+//   the smallest ||R|| is taken. A full step predicted to end its increment (it meets the
+//   displacement test, and its residual predicted as forcing x ||R|| meets the residual test) is
+//   evaluated for its force alone, its tangent being of no use there; when it falls short, the
+//   tangent follows.
 // - each increment starts from a secant prediction (the last increment's change, scaled), or
 //   from the last accepted state when that prediction inverts an element, when the first linear
 //   solve there fails (a tangent too far from positive definite for the shift ladder), or after a

@@ -138,11 +138,11 @@ SparseMatrix laplacian(double c) {
 // A coupled negative mode: CG's direction of negative curvature is not the eigenvector, so LOBPCG
 // has to iterate. The shift must lie between |lambda_min| (K + s I positive definite) and the
 // documented 5 |lambda_min|; the ladder's rungs (1e-4 x mean|K_ii| = 2e-4 fails, 1e-2 x 2 = 0.02
-// works, 20 |lambda_min|) would miss that window.
+// works, 16.6 |lambda_min|) would miss that window.
 TEST_F(CholmodSolver, CoupledNegativeModeIsShiftedByItsEstimatedEigenvalue) {
   const double pi = std::acos(-1.0);
   const double c = 0.005;
-  const double lowest = 2.0 - c - 2.0 * std::cos(pi / (kSize + 1));  // -0.00105
+  const double lowest = 2.0 - c - 2.0 * std::cos(pi / (kSize + 1));  // -0.00121
   const double second = 2.0 - c - 2.0 * std::cos(2.0 * pi / (kSize + 1));
   ASSERT_LT(lowest, 0.0);
   ASSERT_GT(second, 0.0);  // one negative eigenvalue
@@ -167,7 +167,7 @@ TEST_F(CholmodSolver, CoupledNegativeModeIsShiftedByItsEstimatedEigenvalue) {
 // After the estimate's shift worked, the same indefinite K again (as after a damped Newton step
 // whose tangent is still indefinite): no kept factor, so the unshifted try fails, and the ladder
 // starts at the estimate's shift, which works. A ladder restarted at 1e-8 x mean|K_ii| would also
-// fail at 1e-8, 1e-6 and 1e-4 (|lambda_min| = 1.05e-3 on a diagonal of 1.995).
+// fail at 1e-8, 1e-6 and 1e-4 (|lambda_min| = 1.21e-3 on a diagonal of 1.995).
 TEST_F(CholmodSolver, LadderStartsAtTheEstimatedShiftThatWorked) {
   SparseSpdSolver solver(LinearSolverKind::Cholmod);
   const Eigen::VectorXd b = ramp();
@@ -186,10 +186,10 @@ TEST_F(CholmodSolver, LadderStartsAtTheEstimatedShiftThatWorked) {
   EXPECT_NEAR(shift_of(again), shift_of(x), kRelativeRoundoff * shift_of(x));
 }
 
-// From any start the ladder ends at its largest rung, 1e-2 x mean|K_ii|. The first solve leaves
-// the estimate's shift (1.05e-3 .. 5.25e-3) as the ladder's start; the next K needs more than
-// 0.01 (lambda_min = -0.01): the start fails, the next rung (100 x the start, above 1e-2) is
-// clipped to 1e-2 x 1.986 = 0.0199, which works.
+// From any start the ladder ends at its largest rung, 1e-2 x mean|K_ii|. The second solve leaves
+// the estimate's shift (1.21e-3 .. 6.03e-3, i.e. 6.0e-4 .. 3.0e-3 of mean|K_ii|) as the ladder's
+// start; the next K needs more than 0.01 (lambda_min = -0.01): the start fails, the next rung
+// (100 x the start, above 1e-2) is clipped to 1e-2 x 1.986 = 0.0199, which works.
 TEST_F(CholmodSolver, LadderEndsAtItsLargestShiftFromAnyStart) {
   const double pi = std::acos(-1.0);
   const double c = 2.0 - 2.0 * std::cos(pi / (kSize + 1)) + 0.01;  // lambda_min = -0.01
@@ -207,6 +207,19 @@ TEST_F(CholmodSolver, LadderEndsAtItsLargestShiftFromAnyStart) {
   const double s = (b - K.selfadjointView<Eigen::Lower>() * x).dot(x) / x.squaredNorm();
   const double largest = 1e-2 * K.diagonal().cwiseAbs().mean();
   EXPECT_NEAR(s, largest, kRelativeRoundoff * largest);
+}
+
+// A K that no rung can make positive definite (lambda_min = -0.05; the top rung is
+// 1e-2 x 2.94 = 0.0294): the unshifted try and the four rungs 1e-8, 1e-6, 1e-4, 1e-2 each fail
+// once (1e-8 x 100^3 rounds to just below 1e-2 and is the top rung, not a fifth one), and the
+// solve reports failure.
+TEST_F(CholmodSolver, LadderTriesEachRungOnceAndThenGivesUp) {
+  SparseSpdSolver solver(LinearSolverKind::Cholmod);
+  Eigen::VectorXd x;
+  EXPECT_FALSE(solver.solve(matrix(3.0, -0.05), ramp(), x, 1e-4));
+  EXPECT_EQ(solver.failed_factorisations(), 5);
+  EXPECT_EQ(solver.shifted_factorisations(), 0);
+  EXPECT_EQ(solver.factorisations(), 0);
 }
 
 // CG on an old factor of a K far from the current one takes more iterations than half the
@@ -231,6 +244,56 @@ TEST_F(CholmodSolver, FactorisesAtOnceAfterIterationsCostingHalfAFactorisation) 
   ASSERT_TRUE(solver.solve(matrix(2.21, 4.0), b, x, 1e-8));
   EXPECT_EQ(solver.factorisations(), 2);
   EXPECT_LE(relative_residual(matrix(2.21, 4.0), x, b), 1e-8);
+}
+
+/// Lower triangle of a dense SPD matrix: entry (i, j) = 1 / (1 + |i - j|) (a positive
+/// semi-definite kernel) plus 2 on the diagonal, plus scale v_k v_k^T with v_k = cos((k + 1) i / n)
+/// for each k < rank.
+SparseMatrix dense(int n, int rank, double scale) {
+  Eigen::MatrixXd A(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = 1.0 / (1.0 + std::abs(i - j)) + (i == j ? 2.0 : 0.0);
+  for (int k = 0; k < rank; ++k) {
+    Eigen::VectorXd v(n);
+    for (int i = 0; i < n; ++i) v[i] = std::cos((k + 1.0) * i / n);
+    A += scale * v * v.transpose();
+  }
+  return A.triangularView<Eigen::Lower>().toDenseMatrix().sparseView();
+}
+
+// With fill (a dense K of 300 unknowns) half a factorisation's estimated cost is a few CG
+// iterations (3.2). The kept factor of K0 preconditions K0 plus a rank-r term, whose
+// preconditioned matrix has r + 1 distinct eigenvalues: CG needs about r + 1 iterations (measured:
+// 2 for r = 1, 4 for r = 2). A solve within half the cost keeps the factor (the next solve
+// iterates on it); one beyond it makes the next solve factorise. The two cases pin the estimate
+// between 2 and 4 iterations.
+TEST_F(CholmodSolver, KeepsTheFactorWhileIterationsCostLessThanHalfAFactorisation) {
+  const int n = 300;
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  const SparseMatrix K0 = dense(n, 0, 0.0);
+  for (int rank : {1, 2}) {
+    SCOPED_TRACE(rank);
+    SparseSpdSolver solver(LinearSolverKind::Cholmod);
+    Eigen::VectorXd x;
+    ASSERT_TRUE(solver.solve(K0, b, x, 1e-6));
+    const double half_cost = 0.5 * solver.factor_flops() / (31.0 * solver.factor_entries());
+    const SparseMatrix K = dense(n, rank, 1.0);
+    ASSERT_TRUE(solver.solve(K, b, x, 1e-6));
+    const int iterations = solver.iterations();
+    ASSERT_EQ(solver.factorisations(), 1);
+    ASSERT_GT(iterations, 0);
+    ASSERT_TRUE(solver.solve(K, b, x, 1e-6));
+    if (rank == 1) {
+      ASSERT_LE(iterations, half_cost);
+      EXPECT_EQ(solver.factorisations(), 1);  // iterated on the kept factor again
+      EXPECT_GT(solver.iterations(), iterations);
+    } else {
+      ASSERT_GT(iterations, half_cost);
+      EXPECT_EQ(solver.factorisations(), 2);  // factorised at once
+      EXPECT_EQ(solver.iterations(), iterations);
+    }
+    EXPECT_LE(relative_residual(K, x, b), 1e-6);
+  }
 }
 
 // The factor of the tridiagonal K (49 unknowns) plus a decoupled one has no fill with a
