@@ -288,7 +288,7 @@ bool RemeshComplex::tangential_target(int v, const Vector3d& n, const Vector3d& 
   if (n.isZero()) return false;
   const Vector3d d = goal - x_[v];
   Vector3d n_ref;
-  target = proj_.onto_patch(owner_[v], x_[v] + d - n.dot(d) * n, &n_ref, &x_[v]);
+  target = proj_.onto_patch(owner_[v], x_[v] + d - n.dot(d) * n, &n_ref);
   return n_ref.dot(n) > 0.0;  // else the far side of a thin sheet: stay
 }
 
@@ -378,7 +378,7 @@ bool RemeshComplex::split_point(int a, int b, const std::vector<int>& ts, Vector
   }
   Vector3d n_ref, n = Vector3d::Zero();
   for (int t : ts) n += normal(t);
-  m = proj_.onto_patch(patch_[ts[0]], m, &n_ref, &x_[a]);
+  m = proj_.onto_patch(patch_[ts[0]], m, &n_ref);
   return n_ref.dot(n) > 0.0;
 }
 
@@ -487,7 +487,7 @@ bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
     for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == a ? x_[b] : x_[tri_[t][i]];
     const Vector3d g = (q[0] + q[1] + q[2]) / 3.0, n = area_vector(q[0], q[1], q[2]).normalized();
     Vector3d n_ref;
-    const Vector3d on = proj_.onto_patch(patch_[t], g, &n_ref, &x_[b]);
+    const Vector3d on = proj_.onto_patch(patch_[t], g, &n_ref);
     if (n.dot(n_ref) < kMinNormalTurnCos) return false;
     if (deviation() > 0.0 && (on - g).norm() > deviation()) return false;
   }

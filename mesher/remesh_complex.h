@@ -14,9 +14,7 @@
 //   relax     density-weighted centroidal relaxation: a surface vertex moves to the centroid of its
 //             one-ring weighted by area / h^2 (a discrete centroidal Voronoi step, Lloyd on the
 //             surface), tangentially, then onto its patch of the reference surface; a curve
-//             vertex to the weighted midpoint of its two curve neighbours, then onto its junction;
-//             optionally only around triangles with an angle under a threshold (the later rounds
-//             of mesher/surface_remesh.h, where most of the mesh has settled).
+//             vertex to the weighted midpoint of its two curve neighbours, then onto its junction.
 //   smooth_poor  the vertices of triangles with an angle under a threshold move towards the mean of
 //             their neighbours (or halfway, or a quarter), onto their patch or junction, when that
 //             raises the smallest angle around them; a vertex for which none does gets a
@@ -87,9 +85,7 @@ class RemeshComplex {
   std::size_t split_long();
   std::size_t collapse_short();
   std::size_t flip_all();
-  /// With `active_below_rad` > 0 only the vertices of triangles with an angle under it move (the
-  /// rest of the mesh is left as the earlier passes made it); 0 relaxes every vertex.
-  void relax(double active_below_rad = 0.0);
+  void relax();
 
   /// Angle-improving smoothing of the vertices of triangles with an angle under `min_angle_rad`
   /// (header comment); appends the vertices it moved to `moved`.

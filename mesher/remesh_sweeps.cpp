@@ -118,13 +118,11 @@ std::size_t RemeshComplex::split_poor(double min_angle_rad, std::vector<int>& ad
   return n;
 }
 
-void RemeshComplex::relax(double active_below_rad) {
+void RemeshComplex::relax() {
   rebuild_grid();
-  const std::vector<char> active =
-      active_below_rad > 0.0 ? vertices_of(poor_triangles(active_below_rad)) : std::vector<char>();
   std::vector<int> nb;
   for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
-    if (!vertex_alive_[v] || kind_[v] == Kind::Corner || (!active.empty() && !active[v])) continue;
+    if (!vertex_alive_[v] || kind_[v] == Kind::Corner) continue;
     Vector3d target;
     if (kind_[v] == Kind::Surface) {
       Vector3d centroid = Vector3d::Zero();
@@ -186,9 +184,7 @@ void RemeshComplex::smooth_poor(double min_angle_rad, std::vector<int>& moved_ve
     bool done = false;
     for (double f : {1.0, 0.5, 0.25}) {
       Vector3d p = x_[v] + f * (target - x_[v]);
-      if (f != 1.0)
-        p = kind_[v] == Kind::Surface ? proj_.onto_patch(owner_[v], p, nullptr, &x_[v])
-                                      : proj_.onto_curve(owner_[v], p);
+      if (f != 1.0) p = kind_[v] == Kind::Surface ? proj_.onto_patch(owner_[v], p) : proj_.onto_curve(owner_[v], p);
       if (kind_[v] != Kind::Surface && shorter_curve_edge(v, p) < shorter_curve_edge(v, x_[v])) continue;
       if (ring_min_angle(v, p) > before && try_move(v, p, true)) {
         done = true;

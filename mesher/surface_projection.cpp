@@ -95,24 +95,11 @@ SurfaceProjection::SurfaceProjection(const TriSurface& reference)
 
 SurfaceProjection::~SurfaceProjection() = default;
 
-Eigen::Vector3d SurfaceProjection::onto_patch(int patch, const Eigen::Vector3d& p, Eigen::Vector3d* normal,
-                                              const Eigen::Vector3d* near) const {
-  const TriangleTree& tree = *trees_->patch.at(patch);
-  const Point q = point(p);
-  TriangleTree::Point_and_primitive_id hit;
-  if (near) {
-    // The hint's triangle is a stand-in: when no triangle beats the hint point (it is the
-    // closest point itself), the triangle under it is unknown, so the unhinted search decides.
-    const auto stand_in = trees_->patch_triangles[patch].cbegin();
-    hit = tree.closest_point_and_primitive(q, {point(*near), stand_in});
-    if (hit.second == stand_in && hit.first == point(*near)) hit = tree.closest_point_and_primitive(q);
-  } else {
-    hit = tree.closest_point_and_primitive(q);
-  }
-  if (normal) {
-    const Triangle& t = *hit.second;
-    *normal = (vector(t[1]) - vector(t[0])).cross(vector(t[2]) - vector(t[0])).normalized();
-  }
+Eigen::Vector3d SurfaceProjection::onto_patch(int patch, const Eigen::Vector3d& p, Eigen::Vector3d* normal) const {
+  if (!normal) return vector(trees_->patch.at(patch)->closest_point(point(p)));
+  const auto hit = trees_->patch.at(patch)->closest_point_and_primitive(point(p));
+  const Triangle& t = *hit.second;
+  *normal = (vector(t[1]) - vector(t[0])).cross(vector(t[2]) - vector(t[0])).normalized();
   return vector(hit.first);
 }
 

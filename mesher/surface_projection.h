@@ -39,13 +39,7 @@ class SurfaceProjection {
   /// Closest point of patch `patch` / junction `curve` to `p` (mm). `normal`, when given, receives
   /// the unit normal (p -> q) of the patch triangle the point lies on: a caller can tell from it
   /// whether the point landed on the far side of a thin sheet of tissue (both sides one patch).
-  /// `near`, when given, is a point on (or very near) the patch close to p, e.g. a vertex of the
-  /// triangle whose centroid p is: the search starts from it instead of from the closest sample
-  /// point (CGAL's hint), which saves that search and prunes the tree from the start. The
-  /// answer is the closest point all the same; which of several triangles through it supplies
-  /// `normal` may differ.
-  Eigen::Vector3d onto_patch(int patch, const Eigen::Vector3d& p, Eigen::Vector3d* normal = nullptr,
-                             const Eigen::Vector3d* near = nullptr) const;
+  Eigen::Vector3d onto_patch(int patch, const Eigen::Vector3d& p, Eigen::Vector3d* normal = nullptr) const;
   Eigen::Vector3d onto_curve(int curve, const Eigen::Vector3d& p) const;
   /// Distance (mm) from p to the closest point of the whole reference surface.
   double distance(const Eigen::Vector3d& p) const;

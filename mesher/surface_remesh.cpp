@@ -35,18 +35,6 @@ constexpr double kStuckBelow = 0.5;
 /// 27.6 / 26.6 / 30.0 / 29.8 (Q_min at 19,000: 0.498, 0.483, 0.480). Budgets 2,000 and 2,200 keep
 /// their polished result (every repair lowered Q_min), as do the shipped 2,100 and 21,000.
 constexpr int kRepairRounds = 2;
-/// From this round on (0-based), and in the repair's rounds, a round relaxes only the vertices of
-/// triangles with an angle under kActiveRelaxBelowDeg: after the first three rounds most of the
-/// mesh has settled (at 21K, half of the relaxation moves of round 4 were under 3 % of h) and a
-/// full relaxation pass cost ~0.35 s of each ~0.5 s round. The budget and polish passes
-/// (remesh_surface's `finish`) still relax every vertex. Measured on the phantom (remeshing
-/// seconds on a shared machine, Table 1: smallest angle, Q_min, average smallest angle): 21K
-/// 11.98 -> 9.07 s, 30.24 -> 30.01 deg, 0.504 -> 0.532, 51.93 -> 51.62 deg (no repair needed);
-/// 2.1K 30.03 -> 30.02 deg, Q_min 0.488 -> 0.500, 48.83 -> 48.79 deg. A threshold of 40 degrees
-/// gave 2.1K a Q_min of 0.479 (under the paper's 0.486), 50 degrees a P30 of 0.053 %; relaxing
-/// actively in the polish too lowered 2.1K's average smallest angle under the paper's 48.02.
-constexpr int kActiveRelaxFromRound = 3;
-constexpr double kActiveRelaxBelowDeg = 45.0;
 
 }  // namespace
 
@@ -69,7 +57,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   // One round: collapse until stable (the first rounds coarsen a fine extraction by a large
   // factor; at 21K, 183,803 of the 203,882 vertices go), dropping the dead vertices and triangles
   // after each sweep; then split, flip, relax.
-  auto round = [](RemeshComplex& c, bool grade, bool active) {
+  auto round = [](RemeshComplex& c, bool grade) {
     for (int k = 0; k < 20; ++k) {
       const std::size_t collapsed = c.collapse_short();
       c.compact();
@@ -78,11 +66,11 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     if (grade) c.grade_stuck_edges(kStuckBelow);
     c.split_long();
     c.flip_all();
-    c.relax(active ? kActiveRelaxBelowDeg * M_PI / 180.0 : 0.0);
+    c.relax();
   };
   const int rounds = std::max(1, options.iterations);
   for (int it = 0; it < rounds; ++it) {
-    round(m, it >= 1, it >= kActiveRelaxFromRound);
+    round(m, it >= 1);
     stage.note("round " + std::to_string(it + 1) + "/" + std::to_string(rounds) + ": " + std::to_string(m.vertices()) +
                " vertices at edge length L " + format_double("%.3f", m.L) + " mm");
     if (budget && (it == rounds / 3 || it == 2 * rounds / 3))
@@ -141,7 +129,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     auto trial = std::make_unique<RemeshComplex>(m);
     const std::size_t capped = trial->cap_poor_triangles(poor);
     try {
-      for (int k = 0; k < kRepairRounds; ++k) round(*trial, false, true);
+      for (int k = 0; k < kRepairRounds; ++k) round(*trial, false);
       const std::size_t trial_moves = finish(*trial);
       TriSurface trial_result = trial->result(input);
       const SurfaceQuality q = surface_quality(trial_result);

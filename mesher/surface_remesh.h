@@ -5,9 +5,7 @@
 // shape guards), against a size field h(x) = L s(x). The vertex budget: L starts from the area (an
 // equilateral mesh of area A at edge h has about 2A / (sqrt(3) h^2) vertices), is rescaled by the
 // measured count after the first rounds, and a final pass collapses the shortest or splits the
-// longest edges (relative to h) until the count is exactly the budget. From the fourth round on
-// (and in the repair's rounds) the relaxation moves only the vertices of triangles with an angle
-// under 45 degrees: the rest has settled by then (mesher/surface_remesh.cpp). Polish: flips, relaxation,
+// longest edges (relative to h) until the count is exactly the budget. Polish: flips, relaxation,
 // then angle-improving smoothing of the vertices of triangles with an angle under 30 degrees
 // (towards the neighbours' mean, else the best position a pattern search over the patch finds).
 // From the second round on, h is capped near junction edges that stay far shorter than h (fixed
