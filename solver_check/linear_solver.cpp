@@ -97,7 +97,7 @@ struct SparseSpdSolver::Impl {
   /// next Newton iteration's tangent was still indefinite; a ladder restarted at 1e-8 failed at
   /// 1e-8, 1e-6 and 1e-4 before 1e-2 worked (2.6 s of factorisations on the demo); started at the
   /// estimate's shift, failed factorisations fell from 5 to 2 with nodal pressure, 6 to 5 supine.
-  double sigma_start = kMinShift;
+  double sigma_start = kMinShift;  ///< always in [kMinShift, kMaxShift]
   bool last_shifted = false;  ///< the last factorisation was shifted
   int last_cg_iterations = 0;  ///< of the last CG solve since the last factorisation (0: none)
 
@@ -241,7 +241,7 @@ struct SparseSpdSolver::Impl {
       }
       // sigma_start, kShiftFactor times that, ... and kMaxShift last; a rung within rounding of
       // kMaxShift is kMaxShift (1e-8 x 100^3 is 0.009999999999999998: it would be tried twice).
-      for (double sigma = std::max(sigma_start, kMinShift);; sigma *= kShiftFactor) {
+      for (double sigma = sigma_start;; sigma *= kShiftFactor) {
         if (sigma >= kMaxShift * (1.0 - 1e-9)) sigma = kMaxShift;
         if (sigma * mean_diagonal > must_fail) {
           if (factorise_shifted(K, sigma * mean_diagonal)) {

@@ -48,6 +48,17 @@ double relative_residual(const SparseMatrix& K, const Eigen::VectorXd& x, const 
 
 Eigen::VectorXd ramp() { return Eigen::VectorXd::LinSpaced(kSize, 1.0, 2.0); }
 
+/// The shift s of a damped step x: (K + s I) x = b, so s = (b - K x) . x / |x|^2.
+double damped_step_shift(const SparseMatrix& K, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
+  return (b - K.selfadjointView<Eigen::Lower>() * x).dot(x) / x.squaredNorm();
+}
+
+/// Half a factorisation's cost in CG iterations as linear_solver.h documents it:
+/// 0.5 factor_flops / (31 factor_entries) (kAgedShare, kFlopsPerStreamedEntry).
+double half_factorisation_cost(const SparseSpdSolver& solver) {
+  return 0.5 * solver.factor_flops() / (31.0 * solver.factor_entries());
+}
+
 class CholmodSolver : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -155,9 +166,8 @@ TEST_F(CholmodSolver, CoupledNegativeModeIsShiftedByItsEstimatedEigenvalue) {
   EXPECT_EQ(solver.failed_factorisations(), 0);
   EXPECT_EQ(solver.shifted_factorisations(), 1);
   EXPECT_GT(solver.eigenvalue_iterations(), 0);
-  // The shift s from the damped step: (K + s I) x = b.
+  const double s = damped_step_shift(K, x, b);
   const Eigen::VectorXd Kx = K.selfadjointView<Eigen::Lower>() * x;
-  const double s = (b - Kx).dot(x) / x.squaredNorm();
   EXPECT_GT(s, -lowest);
   EXPECT_LE(s, 5.0 * -lowest * (1.0 + kRelativeRoundoff));
   EXPECT_LT((Kx + s * x - b).norm(), kRelativeRoundoff * b.norm() / (s + lowest));
@@ -180,10 +190,8 @@ TEST_F(CholmodSolver, LadderStartsAtTheEstimatedShiftThatWorked) {
   ASSERT_TRUE(solver.solve(K, b, again, 1e-4));
   EXPECT_EQ(solver.failed_factorisations(), 1);  // the unshifted try only
   EXPECT_EQ(solver.shifted_factorisations(), 2);
-  const auto shift_of = [&](const Eigen::VectorXd& y) {  // s in (K + s I) y = b
-    return (b - K.selfadjointView<Eigen::Lower>() * y).dot(y) / y.squaredNorm();
-  };
-  EXPECT_NEAR(shift_of(again), shift_of(x), kRelativeRoundoff * shift_of(x));
+  const double shift = damped_step_shift(K, x, b);
+  EXPECT_NEAR(damped_step_shift(K, again, b), shift, kRelativeRoundoff * shift);
 }
 
 // From any start the ladder ends at its largest rung, 1e-2 x mean|K_ii|. The second solve leaves
@@ -204,7 +212,7 @@ TEST_F(CholmodSolver, LadderEndsAtItsLargestShiftFromAnyStart) {
   ASSERT_TRUE(solver.solve(K, b, x, 1e-4));
   EXPECT_EQ(solver.failed_factorisations(), 2);  // unshifted, then the start
   EXPECT_EQ(solver.shifted_factorisations(), 2);
-  const double s = (b - K.selfadjointView<Eigen::Lower>() * x).dot(x) / x.squaredNorm();
+  const double s = damped_step_shift(K, x, b);
   const double largest = 1e-2 * K.diagonal().cwiseAbs().mean();
   EXPECT_NEAR(s, largest, kRelativeRoundoff * largest);
 }
@@ -235,7 +243,7 @@ TEST_F(CholmodSolver, FactorisesAtOnceAfterIterationsCostingHalfAFactorisation) 
   ASSERT_TRUE(solver.solve(K, b, x, 1e-8));
   const int iterations = solver.iterations();
   ASSERT_EQ(solver.factorisations(), 1);
-  ASSERT_GT(iterations, 0.5 * solver.factor_flops() / (31.0 * solver.factor_entries()));
+  ASSERT_GT(iterations, half_factorisation_cost(solver));
   ASSERT_TRUE(solver.solve(K, b, x, 1e-8));
   EXPECT_EQ(solver.factorisations(), 2);
   EXPECT_EQ(solver.iterations(), iterations);
@@ -276,7 +284,7 @@ TEST_F(CholmodSolver, KeepsTheFactorWhileIterationsCostLessThanHalfAFactorisatio
     SparseSpdSolver solver(LinearSolverKind::Cholmod);
     Eigen::VectorXd x;
     ASSERT_TRUE(solver.solve(K0, b, x, 1e-6));
-    const double half_cost = 0.5 * solver.factor_flops() / (31.0 * solver.factor_entries());
+    const double half_cost = half_factorisation_cost(solver);
     const SparseMatrix K = dense(n, rank, 1.0);
     ASSERT_TRUE(solver.solve(K, b, x, 1e-6));
     const int iterations = solver.iterations();
