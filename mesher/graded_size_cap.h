@@ -10,12 +10,13 @@
 // i.e. the size an isosceles triangle on that edge needs for its apex angle to reach
 // 2 asin(1 / (2 factor)) (30 degrees at factor 1.93), growing back linearly (a Lipschitz bound, so
 // the size does not jump) to the size field elsewhere. The cap over several edges is the minimum
-// of theirs. Deterministic; queries are O(1) on average (a hash grid of each edge's influence box).
+// of theirs. Deterministic; queries are O(1) on average (a grid of each edge's influence box) and
+// may run on several threads at once (add() must not overlap them).
 #pragma once
 
 #include "mesher/triangle_grid.h"
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <vector>
 
@@ -23,8 +24,9 @@ namespace tissuemesh {
 
 class GradedSizeCap {
  public:
-  /// `factor` (> 0) and `gradation` (> 0, mm per mm) as in the header comment.
-  GradedSizeCap(double factor, double gradation);
+  /// `factor` (> 0) and `gradation` (> 0, mm per mm) as in the header comment; `region`: where
+  /// the queries will be (mm; outside it they are still right, only slower).
+  GradedSizeCap(double factor, double gradation, const Eigen::AlignedBox3d& region);
 
   /// Adds a stuck edge with midpoint `m` and length `length` (mm). Its cap only matters where it is
   /// below `largest` (mm, the largest size the field can ask for), so it is entered only within
@@ -40,10 +42,10 @@ class GradedSizeCap {
     double size;  ///< factor * length, mm
   };
   double factor_, gradation_;
+  Eigen::AlignedBox3d region_;
   std::vector<Seed> seeds_;
   TriangleGrid grid_;  ///< seed ids by influence box
   double cell_ = 0.0;  ///< grid cell (mm), fixed at the first add()
-  mutable std::vector<int> found_;
 };
 
 }  // namespace tissuemesh

@@ -263,7 +263,8 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                    {"collapses", r.remesh->collapses},
                    {"flips", r.remesh->flips},
                    {"angle_smoothing_moves", r.remesh->angle_moves},
-                   {"quality_smoothing_moves", r.remesh->quality_moves}};
+                   {"quality_smoothing_moves", r.remesh->quality_moves},
+                   {"sweeps_on_two_threads", r.remesh->partitioned_sweeps}};
     if (r.hausdorff)
       j["remesh"]["hausdorff_to_extracted_mm"] = {{"symmetric", r.hausdorff->symmetric_mm()},
                                                    {"remeshed_to_extracted", r.hausdorff->a_to_b_mm},
@@ -340,7 +341,7 @@ std::string surface_job_text(const SurfaceJobResult& r) {
       << " mm where the size field is 1 (" << r.remesh->splits << " splits, " << r.remesh->collapses
       << " collapses, " << r.remesh->flips << " flips, " << r.remesh->angle_moves << " angle-smoothing moves";
     if (r.remesh->quality_moves > 0) o << ", " << r.remesh->quality_moves << " quality-smoothing moves";
-    o << ")\n";
+    o << "; " << r.remesh->partitioned_sweeps << " collapse and relaxation sweeps in two halves on two threads)\n";
     if (r.hausdorff)
       o << "Hausdorff distance to the extracted surface: " << fmt("%.3f", r.hausdorff->symmetric_mm())
         << " mm (remeshed -> extracted " << fmt("%.3f", r.hausdorff->a_to_b_mm) << " mm, extracted -> remeshed "

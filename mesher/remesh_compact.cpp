@@ -54,8 +54,10 @@ void RemeshComplex::compact() {
     curve_edge[edge_key(vertex_index[a], vertex_index[b])] = curve;
   }
   curve_edge_ = std::move(curve_edge);
-  seen_.assign(nt, 0);
-  stamp_ = 0;
+  for (Scratch& sc : scratch_) {
+    sc.seen.assign(nt, 0);
+    sc.stamp = 0;
+  }
   grid_cell_ = 0.0;
   rebuild_grid();  // on the new triangle ids
 }

@@ -7,7 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
+
+#include <omp.h>
 
 namespace tissuemesh {
 namespace {
@@ -20,15 +21,6 @@ constexpr double kMinNormalTurnCos = 0.5;
 /// Flips keep the surface shape: the new pair of triangles must be at least this flat (cos 25 deg),
 /// or no less flat than the old pair.
 constexpr double kFlipFlatCos = 0.906;
-/// The intersection guard's grid is rebuilt when the mean triangle size has drifted this far from
-/// its cell size (coarsening grows triangles ~3x over the first rounds).
-constexpr double kGridDrift = 1.5;
-/// Grid cell edge over the mean triangle extent (largest box side): fewer cells per query against
-/// more triangles per cell. Remeshing the 21K phantom (2 runs each, same output), with one query
-/// per created triangle: 9.5 s at 0.7, 8.9 s at 1, 8.45 s at 1.5, 9.1 s at 2, 9.8 s at 3; with one
-/// query over all of an operation's created triangles (would_intersect): 6.6 s at 1, 6.2 s at 1.5,
-/// 5.9-6.0 s at 2, 5.7-6.0 s at 2.5 and 3, 6.1 s at 3.5, 6.3 s at 5.
-constexpr double kGridCellPerExtent = 2.5;
 /// The approximation bound is at least this fraction of the edge length L.
 constexpr double kDeviationPerEdge = 0.25;
 /// Size cap around stuck edges (mesher/graded_size_cap.h): h = 1.5 times the stuck edge there, so
@@ -48,20 +40,27 @@ constexpr double kCapGradation = 0.4;
 /// four vertices evenly spaced along it make a near-square of two near-right triangles.
 constexpr int kMinLoopEdges = 4;
 
-Eigen::AlignedBox3d box_of(const TrianglePoints& p) {
-  Eigen::AlignedBox3d b(p[0]);
-  b.extend(p[1]);
-  b.extend(p[2]);
-  return b;
+/// The input's bounding box widened by a tenth of its diagonal on every side (a unit box for an
+/// empty input): the remesher's vertices stay on or near the input surface, so the grids' cells
+/// cover them (a grid still works beyond its region, only with more candidates per query).
+Eigen::AlignedBox3d widened_bounds(const TriSurface& in) {
+  Eigen::AlignedBox3d box;
+  for (const Vector3d& p : in.points) box.extend(p);
+  if (box.isEmpty()) return Eigen::AlignedBox3d(Vector3d::Zero(), Vector3d::Ones());
+  const Vector3d margin = Vector3d::Constant(0.1 * box.diagonal().norm() + 1.0);
+  return Eigen::AlignedBox3d(box.min() - margin, box.max() + margin);
 }
+
 
 }  // namespace
 
 RemeshComplex::RemeshComplex(const TriSurface& in, const SurfaceProjection& projection, const RemeshOptions& options)
     : proj_(projection),
       size_(options.relative_size),
-      cap_(kCapFactor, kCapGradation),
-      max_deviation_(options.max_deviation_mm) {
+      cap_(kCapFactor, kCapGradation, widened_bounds(in)),
+      max_deviation_(options.max_deviation_mm),
+      region_(widened_bounds(in)),
+      threads_(std::clamp(options.threads, 1, 2)) {
   x_ = in.points;
   reference_ = in.points;
   represents_.resize(x_.size());
@@ -242,9 +241,10 @@ RemeshComplex::NewTriangle RemeshComplex::moved_triangle(int t, int v, const Vec
 
 void RemeshComplex::collect_moved(const std::vector<int>& tris, const std::vector<int>& skip, int v, const Vector3d& p,
                                   int id) {
-  created_.clear();
+  std::vector<NewTriangle>& created = scratch().created;
+  created.clear();
   for (int t : tris)
-    if (std::find(skip.begin(), skip.end(), t) == skip.end()) created_.push_back(moved_triangle(t, v, p, id));
+    if (std::find(skip.begin(), skip.end(), t) == skip.end()) created.push_back(moved_triangle(t, v, p, id));
 }
 
 double RemeshComplex::ring_min_angle(int v, const Vector3d& p) const {
@@ -306,69 +306,6 @@ bool RemeshComplex::try_move(int v, const Vector3d& p, bool handoff) {
   return true;
 }
 
-bool RemeshComplex::would_intersect(const std::vector<int>& replaced) {
-  const std::vector<NewTriangle>& created = created_;
-  if (created.empty()) return false;
-  created_boxes_.clear();
-  created_prepared_.clear();
-  Eigen::AlignedBox3d all;
-  for (const NewTriangle& c : created) {
-    created_boxes_.push_back(box_of(c.p));
-    created_prepared_.emplace_back(c.p);
-    all.extend(created_boxes_.back());
-  }
-  for (std::size_t i = 0; i < created.size(); ++i)
-    for (std::size_t j = i + 1; j < created.size(); ++j)
-      if (triangles_intersect(created_prepared_[i], created[i].v, created_prepared_[j], created[j].v)) return true;
-  // One grid query over the union of the created triangles' boxes, each live triangle met there
-  // tested once against every created triangle whose box it touches: the same pairs as a query
-  // per created triangle, without visiting a candidate once per created triangle.
-  if (seen_.size() < tri_.size()) seen_.resize(tri_.size(), 0);
-  ++stamp_;
-  for (int t : replaced) seen_[t] = stamp_;
-  candidates_.clear();
-  grid_.query(all, candidates_);
-  for (int u : candidates_) {
-    if (seen_[u] == stamp_ || !tri_alive_[u]) continue;
-    seen_[u] = stamp_;
-    const Eigen::AlignedBox3d& box = tri_box_[u];
-    if (!box.intersects(all)) continue;
-    std::optional<PreparedTriangle> prepared;  // built at the first created triangle whose box u touches
-    for (std::size_t i = 0; i < created.size(); ++i) {
-      if (!box.intersects(created_boxes_[i])) continue;
-      if (!prepared) prepared.emplace(TrianglePoints{x_[tri_[u][0]], x_[tri_[u][1]], x_[tri_[u][2]]});
-      if (triangles_intersect(created_prepared_[i], created[i].v, *prepared, tri_[u])) return true;
-    }
-  }
-  return false;
-}
-
-void RemeshComplex::index_triangle(int t) {
-  if (t >= static_cast<int>(tri_box_.size())) tri_box_.resize(tri_.size());
-  tri_box_[t] = box_of({x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]});
-  grid_.insert(t, tri_box_[t]);
-}
-
-void RemeshComplex::rebuild_grid() {
-  // Cells 2.5 times the mean triangle size (kGridCellPerExtent): a query visits a few cells of a
-  // few triangles each.
-  // Every change is entered as it happens, so the grid is only rebuilt when the triangles' size
-  // has drifted by more than a factor kGridDrift from the cell size.
-  double extent = 0.0;
-  std::size_t n = 0;
-  for (std::size_t t = 0; t < tri_.size(); ++t)
-    if (tri_alive_[t]) {
-      extent += box_of({x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]}).sizes().maxCoeff();
-      ++n;
-    }
-  const double cell = kGridCellPerExtent * (n > 0 && extent > 0.0 ? extent / static_cast<double>(n) : 1.0);
-  if (grid_cell_ > 0.0 && cell < kGridDrift * grid_cell_ && cell > grid_cell_ / kGridDrift) return;
-  grid_cell_ = cell;
-  grid_.reset(cell);
-  for (std::size_t t = 0; t < tri_.size(); ++t)
-    if (tri_alive_[t]) index_triangle(static_cast<int>(t));
-}
-
 bool RemeshComplex::split_point(int a, int b, const std::vector<int>& ts, Vector3d& m) const {
   const int curve = curve_of_edge(a, b);
   m = 0.5 * (x_[a] + x_[b]);
@@ -389,10 +326,11 @@ bool RemeshComplex::split(int a, int b) {
   Vector3d m;
   if (!split_point(a, b, ts, m)) return false;
   const int v = static_cast<int>(x_.size());
-  created_.clear();
+  std::vector<NewTriangle>& created = scratch().created;
+  created.clear();
   for (int t : ts) {
-    created_.push_back(moved_triangle(t, b, m, v));
-    created_.push_back(moved_triangle(t, a, m, v));
+    created.push_back(moved_triangle(t, b, m, v));
+    created.push_back(moved_triangle(t, a, m, v));
   }
   if (would_intersect(ts)) return false;
   if (curve < 0) {
@@ -529,8 +467,13 @@ bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
   represents_[b].insert(represents_[b].end(), represents_[a].begin(), represents_[a].end());
   represents_[a].clear();
   vertex_alive_[a] = 0;
-  --alive_vertices_;
-  ++collapses;
+  // Counted at once, or by the partitioned sweep once both halves are done (remesh_partition.cpp).
+  if (omp_in_parallel()) {
+    ++scratch().collapsed;
+  } else {
+    --alive_vertices_;
+    ++collapses;
+  }
   return true;
 }
 
@@ -579,7 +522,7 @@ bool RemeshComplex::try_flip(int a, int b) {
   if (m1.dot(m2) < std::min(n1.dot(n2), kFlipFlatCos)) return false;
   const Vector3d mean = (n1 + n2).normalized();
   if (m1.dot(mean) < kMinNormalTurnCos || m2.dot(mean) < kMinNormalTurnCos) return false;
-  created_ = {{{a, d, c}, {pa, pd, pc}}, {{d, b, c}, {pd, pb, pc}}};
+  scratch().created = {{{a, d, c}, {pa, pd, pc}}, {{d, b, c}, {pd, pb, pc}}};
   if (would_intersect(ts)) return false;
   tri_[t1] = {a, d, c};
   tri_[t2] = {d, b, c};

@@ -45,7 +45,8 @@
 // instead of becoming slivers. Edges with a surface vertex are not entered: that vertex can still
 // move, and a short edge held by a thin sheet, once entered, refines the sheet into more short
 // edges (measured on the 2.1K phantom: down to 0.02 mm edges and a 0.6 degree minimum angle).
-// Deterministic: every sweep visits triangles and vertices in index order. Not parallel.
+// Deterministic: every sweep visits triangles and vertices in index order, the partitioned ones
+// (collapse_short, relax) each half in index order, the halves on two threads (remesh_partition.cpp).
 #pragma once
 
 #include "core/tri_surface.h"
@@ -69,11 +70,13 @@ namespace tissuemesh {
 class RemeshComplex {
  public:
   /// `in` is the reference surface (valid, closed per tissue); `projection` is built on it and
-  /// must outlive this object. Takes options.relative_size and options.max_deviation_mm.
+  /// must outlive this object. Takes options.relative_size, options.max_deviation_mm and
+  /// options.threads.
   RemeshComplex(const TriSurface& in, const SurfaceProjection& projection, const RemeshOptions& options);
 
   double L = 1.0;  ///< edge length where s = 1, mm
   std::size_t splits = 0, collapses = 0, flips = 0;
+  std::size_t partitioned_sweeps = 0;  ///< sweeps run as two halves
 
   std::size_t vertices() const { return alive_vertices_; }
   /// Live vertices that never move or go (junction corners, pinches).
@@ -82,6 +85,10 @@ class RemeshComplex {
   double weighted_area() const;
 
   // Sweeps over all edges (or vertices), in index order; each returns how many operations it did.
+  // collapse_short and relax are partitioned sweeps on a large complex (remesh_partition.cpp):
+  // the edges (vertices) of either half of the complex, in index order, the two halves on two
+  // threads at once, then in index order those of the band between the halves. Their results do
+  // not depend on the number of threads.
   std::size_t split_long();
   std::size_t collapse_short();
   std::size_t flip_all();
@@ -193,6 +200,26 @@ class RemeshComplex {
   bool tangential_target(int v, const Vector3d& goal, Vector3d& target) const {
     return tangential_target(v, vertex_normal(v), goal, target);
   }
+  /// One vertex of relax(): moves it towards its weighted centroid (header comment). `side`: the
+  /// half of a partitioned sweep it is visited in (-1: the band, or no partition). Returns 1 when
+  /// it moved, 0 when not, -1 when the move would touch the other half or the band (then the
+  /// band visits it again).
+  int relax_vertex(int v, int side);
+  /// One edge of collapse_short(), with `side` and the result as in relax_vertex.
+  int collapse_edge(int a, int b, int side);
+  /// Partitioned sweeps: sets side_ (every vertex -1 when the complex is too small to split) and
+  /// returns whether there are two halves. A half is the vertices whose grid slab across the split
+  /// axis is below (side 0) or above (side 1) band_slab_, the median one.
+  bool assign_sides();
+  /// v and every vertex of v's triangles are on `side` (an operation at v touches nothing else).
+  bool vertex_on_side(int v, int side) const;
+  /// p's grid slab belongs to `side`.
+  bool point_on_side(const Vector3d& p, int side) const;
+  /// Applies op(item, side) (relax_vertex or collapse_edge) to `items` as a partitioned sweep:
+  /// with two halves, those with side_of(item) 0 or 1 on their half's thread, then every item
+  /// not yet done (op returned -1, or side -1) in order with side -1. Returns the 1s.
+  template <class Item, class SideOf, class Op>
+  std::size_t partitioned_sweep(const std::vector<Item>& items, SideOf side_of, Op op);
   /// Moves v to p if the normal, shape and intersection guards allow it (header comment).
   /// `handoff`: input vertices v stands for may pass to a neighbour (keeps_represented); the
   /// angle and quality smoothing allow it, so that a vertex next to a junction can move away from it.
@@ -263,16 +290,30 @@ class RemeshComplex {
   std::vector<Vector3d> reference_;             ///< the input vertices
   std::vector<std::vector<int>> represents_;    ///< per vertex: input vertices collapsed into it
   TriangleGrid grid_;
+  Eigen::AlignedBox3d region_;  ///< the input's bounding box, widened: the grids cover it
   /// Per triangle: its bounding box when last entered into grid_ (index_triangle; every change of a
   /// triangle or its vertices re-enters it, and compact() forces a full rebuild).
   std::vector<Eigen::AlignedBox3d> tri_box_;
   double grid_cell_ = 0.0;      ///< the grid's cell size (0: not built yet, or ids renumbered)
-  std::vector<unsigned> seen_;  ///< per triangle: stamp of the last would_intersect() visit
-  unsigned stamp_ = 0;
-  std::vector<int> candidates_;
-  std::vector<Eigen::AlignedBox3d> created_boxes_;  ///< scratch of would_intersect(): boxes of created_
-  std::vector<PreparedTriangle> created_prepared_;  ///< scratch of would_intersect(): created_, prepared
-  std::vector<NewTriangle> created_;  ///< scratch: the triangles an operation would create
+  /// The guards' scratch, one per thread of a partitioned sweep (entry 0 serves every sequential
+  /// operation too); scratch() picks the calling thread's.
+  struct Scratch {
+    std::vector<NewTriangle> created;  ///< the triangles an operation would create
+    std::vector<Eigen::AlignedBox3d> created_boxes;  ///< would_intersect(): boxes of `created`
+    std::vector<PreparedTriangle> created_prepared;  ///< would_intersect(): `created`, prepared
+    std::vector<unsigned> seen;  ///< per triangle: stamp of the last would_intersect() visit
+    unsigned stamp = 0;
+    std::vector<int> candidates;
+    std::size_t collapsed = 0;  ///< collapses of a partitioned sweep's half, not yet counted
+  };
+  std::array<Scratch, 2> scratch_;
+  Scratch& scratch();
+  /// Partitioned sweeps (mesher/remesh_partition.cpp): per vertex, the half of the complex it was
+  /// in when the sweep began (0 or 1, -1 the band between them), the grid slab of the band, and
+  /// the threads to run the halves on.
+  std::vector<signed char> side_;
+  int band_slab_ = 0;
+  int threads_ = 2;
   std::vector<Vector3d> x_;
   std::vector<Kind> kind_;
   std::vector<int> owner_;  ///< patch (surface vertex), curve (curve vertex), -1 (corner)

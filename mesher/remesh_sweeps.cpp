@@ -65,9 +65,12 @@ std::size_t RemeshComplex::split_long() {
   return sweep_edges([this](int a, int b) { return relative_length(a, b) > kSplitAbove && split(a, b); });
 }
 
-std::size_t RemeshComplex::collapse_short() {
-  return sweep_edges(
-      [this](int a, int b) { return relative_length(a, b) < kCollapseBelow && collapse_either(a, b, kSplitAbove); });
+int RemeshComplex::collapse_edge(int a, int b, int side) {
+  // A collapse of a junction edge rewrites the junction bookkeeping, shared by the whole complex.
+  if (side >= 0 && (kind_[a] != Kind::Surface && kind_[b] != Kind::Surface)) return -1;
+  if (!edge_exists(a, b)) return 0;
+  if (side >= 0 && !(vertex_on_side(a, side) && vertex_on_side(b, side))) return -1;
+  return relative_length(a, b) < kCollapseBelow && collapse_either(a, b, kSplitAbove);
 }
 
 std::size_t RemeshComplex::flip_all() {
@@ -118,42 +121,41 @@ std::size_t RemeshComplex::split_poor(double min_angle_rad, std::vector<int>& ad
   return n;
 }
 
-void RemeshComplex::relax() {
-  rebuild_grid();
-  std::vector<int> nb;
-  for (int v = 0; v < static_cast<int>(x_.size()); ++v) {
-    if (!vertex_alive_[v] || kind_[v] == Kind::Corner) continue;
-    Vector3d target;
-    if (kind_[v] == Kind::Surface) {
-      Vector3d centroid = Vector3d::Zero();
-      double weight = 0.0;
-      for (int t : vt_[v]) {
-        const Vector3d &a = x_[tri_[t][0]], &b = x_[tri_[t][1]], &c = x_[tri_[t][2]];
-        const Vector3d g = (a + b + c) / 3.0;
-        const double st = s(g), w = area_vector(a, b, c).norm() / (st * st);
-        centroid += w * g;
-        weight += w;
-      }
-      if (!(weight > 0.0) || !tangential_target(v, centroid / weight, target)) continue;
-    } else {
-      neighbours(v, nb);
-      Vector3d sum = Vector3d::Zero();
-      double weight = 0.0;
-      int found = 0;
-      for (int w : nb) {
-        if (curve_of_edge(v, w) != owner_[v]) continue;
-        const Vector3d mid = 0.5 * (x_[v] + x_[w]);
-        const double st = s(mid), wt = (x_[w] - x_[v]).norm() / (st * st);
-        sum += wt * (0.5 * (mid + x_[v]));  // centroid of the half-segment towards w
-        weight += wt;
-        ++found;
-      }
-      if (found != 2 || !(weight > 0.0)) continue;
-      target = proj_.onto_curve(owner_[v], sum / weight);
-      if (shorter_curve_edge(v, target) < shorter_curve_edge(v, x_[v])) continue;
+int RemeshComplex::relax_vertex(int v, int side) {
+  if (!vertex_alive_[v] || kind_[v] == Kind::Corner) return 0;
+  if (side >= 0 && !vertex_on_side(v, side)) return -1;
+  Vector3d target;
+  if (kind_[v] == Kind::Surface) {
+    Vector3d centroid = Vector3d::Zero();
+    double weight = 0.0;
+    for (int t : vt_[v]) {
+      const Vector3d &a = x_[tri_[t][0]], &b = x_[tri_[t][1]], &c = x_[tri_[t][2]];
+      const Vector3d g = (a + b + c) / 3.0;
+      const double st = s(g), w = area_vector(a, b, c).norm() / (st * st);
+      centroid += w * g;
+      weight += w;
     }
-    try_move(v, target);
+    if (!(weight > 0.0) || !tangential_target(v, centroid / weight, target)) return 0;
+  } else {
+    std::vector<int> nb;
+    neighbours(v, nb);
+    Vector3d sum = Vector3d::Zero();
+    double weight = 0.0;
+    int found = 0;
+    for (int w : nb) {
+      if (curve_of_edge(v, w) != owner_[v]) continue;
+      const Vector3d mid = 0.5 * (x_[v] + x_[w]);
+      const double st = s(mid), wt = (x_[w] - x_[v]).norm() / (st * st);
+      sum += wt * (0.5 * (mid + x_[v]));  // centroid of the half-segment towards w
+      weight += wt;
+      ++found;
+    }
+    if (found != 2 || !(weight > 0.0)) return 0;
+    target = proj_.onto_curve(owner_[v], sum / weight);
+    if (shorter_curve_edge(v, target) < shorter_curve_edge(v, x_[v])) return 0;
   }
+  if (side >= 0 && !point_on_side(target, side)) return -1;
+  return try_move(v, target);
 }
 
 void RemeshComplex::smooth_poor(double min_angle_rad, std::vector<int>& moved_vertices) {

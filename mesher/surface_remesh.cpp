@@ -177,6 +177,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   r.flips = chosen->flips;
   r.angle_moves = smoothed;
   r.quality_moves = quality_moves;
+  r.partitioned_sweeps = chosen->partitioned_sweeps;
   return r;
 }
 

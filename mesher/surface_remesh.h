@@ -58,6 +58,9 @@ struct RemeshOptions {
   /// Try the repair of triangles left under 30 degrees (header comment); false returns the
   /// polished result as is (what a discarded repair returns too).
   bool repair = true;
+  /// Threads of the partitioned sweeps (mesher/remesh_complex.h): 2, or 1 to run the two halves
+  /// one after the other. The result is the same either way.
+  int threads = 2;
 };
 
 struct RemeshResult {
@@ -67,6 +70,7 @@ struct RemeshResult {
   std::size_t splits = 0, collapses = 0, flips = 0;
   std::size_t angle_moves = 0;  ///< vertex moves of the angle-improving smoothing (a kept repair's included)
   std::size_t quality_moves = 0;  ///< vertex moves of the final quality-raising smoothing
+  std::size_t partitioned_sweeps = 0;  ///< collapse and relaxation sweeps run as two halves (the others: none was large enough)
 };
 
 /// `input` must be valid and closed per tissue (mesher/surface_checks.h), `projection` built on it.

@@ -1,35 +1,50 @@
 #include "mesher/triangle_grid.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace tissuemesh {
+namespace {
 
-void TriangleGrid::reset(double cell_mm) {
-  inverse_cell_ = 1.0 / cell_mm;
-  cells_.clear();
+int absolute_index(double x, double inverse_cell) { return static_cast<int>(std::floor(x * inverse_cell)); }
+
+}  // namespace
+
+void TriangleGrid::reset(double cell_mm, const Eigen::AlignedBox3d& region) {
+  assert(cell_mm > 0.0 && !region.isEmpty());
+  // Grow the cell until the region fits in kMaxCells (a huge image with tiny triangles): queries
+  // then return more candidates, never fewer.
+  for (;;) {
+    inverse_cell_ = 1.0 / cell_mm;
+    for (int a = 0; a < 3; ++a) {
+      origin_[a] = absolute_index(region.min()[a], inverse_cell_);
+      dims_[a] = absolute_index(region.max()[a], inverse_cell_) - origin_[a] + 1;
+    }
+    if (static_cast<double>(dims_[0]) * dims_[1] * dims_[2] <= static_cast<double>(kMaxCells)) break;
+    cell_mm *= 1.25;
+  }
+  cells_.assign(static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2], {});
   range_.clear();
 }
 
-std::uint64_t TriangleGrid::key(int i, int j, int k) {
-  // 21 bits per axis, offset to stay positive: +-1M cells, far beyond any image.
-  constexpr std::int64_t kOffset = 1 << 20;
-  return (static_cast<std::uint64_t>(i + kOffset) << 42) | (static_cast<std::uint64_t>(j + kOffset) << 21) |
-         static_cast<std::uint64_t>(k + kOffset);
+Eigen::Vector3i TriangleGrid::cell_of(const Eigen::Vector3d& p) const {
+  Eigen::Vector3i c;
+  for (int a = 0; a < 3; ++a) c[a] = std::clamp(absolute_index(p[a], inverse_cell_) - origin_[a], 0, dims_[a] - 1);
+  return c;
 }
 
-Eigen::Vector3i TriangleGrid::cell_of(const Eigen::Vector3d& p) const {
-  return {static_cast<int>(std::floor(p[0] * inverse_cell_)), static_cast<int>(std::floor(p[1] * inverse_cell_)),
-          static_cast<int>(std::floor(p[2] * inverse_cell_))};
+int TriangleGrid::slab_of(double c, int axis) const {
+  return std::clamp(absolute_index(c, inverse_cell_) - origin_[axis], 0, dims_[axis] - 1);
 }
 
 void TriangleGrid::remove(int id) {
   if (id >= static_cast<int>(range_.size()) || !range_[id].present) return;
   const Range& r = range_[id];
-  for (int i = r.lo[0]; i <= r.hi[0]; ++i)
+  for (int k = r.lo[2]; k <= r.hi[2]; ++k)
     for (int j = r.lo[1]; j <= r.hi[1]; ++j)
-      for (int k = r.lo[2]; k <= r.hi[2]; ++k) {
-        std::vector<int>& cell = cells_[key(i, j, k)];
+      for (int i = r.lo[0]; i <= r.hi[0]; ++i) {
+        std::vector<int>& cell = at(i, j, k);
         cell.erase(std::find(cell.begin(), cell.end(), id));
       }
   range_[id].present = false;
@@ -45,18 +60,18 @@ void TriangleGrid::insert(int id, const Eigen::AlignedBox3d& box) {
   r.lo = lo;
   r.hi = hi;
   r.present = true;
-  for (int i = r.lo[0]; i <= r.hi[0]; ++i)
+  for (int k = r.lo[2]; k <= r.hi[2]; ++k)
     for (int j = r.lo[1]; j <= r.hi[1]; ++j)
-      for (int k = r.lo[2]; k <= r.hi[2]; ++k) cells_[key(i, j, k)].push_back(id);
+      for (int i = r.lo[0]; i <= r.hi[0]; ++i) at(i, j, k).push_back(id);
 }
 
 void TriangleGrid::query(const Eigen::AlignedBox3d& box, std::vector<int>& out) const {
   const Eigen::Vector3i lo = cell_of(box.min()), hi = cell_of(box.max());
-  for (int i = lo[0]; i <= hi[0]; ++i)
+  for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int k = lo[2]; k <= hi[2]; ++k) {
-        const auto it = cells_.find(key(i, j, k));
-        if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        const std::vector<int>& cell = at(i, j, k);
+        out.insert(out.end(), cell.begin(), cell.end());
       }
 }
 

@@ -1,0 +1,122 @@
+// Partitioned sweeps of RemeshComplex (mesher/remesh_complex.h): the collapse and relaxation
+// sweeps of a large complex on two threads, with results that do not depend on the thread count.
+//
+// At the start of a sweep every live vertex gets a side from the slab of grid_ cells (across
+// kSplitAxis) it is in: 0 below the median slab, 1 above it, -1 (the band) in it. An operation
+// runs on its side's thread only when every vertex it reads or changes is on that side
+// (vertex_on_side: the vertex, or the edge's two vertices, and every vertex of their triangles)
+// and, for a move, when the new position stays in that side's slabs (point_on_side). Then the two
+// threads share nothing that one of them writes:
+//   - the triangles a side changes have all their vertices on it, so their old and new boxes lie
+//     in its slabs, and its intersection guard reads only cells of its slabs (those of the union
+//     of the boxes of the triangles it would create); the grid's cells all exist from its reset()
+//     on (mesher/triangle_grid.h), so entering a triangle writes only cells of its own side;
+//   - the vertex and triangle arrays are written at the side's own entries, and a side reads
+//     another vertex's triangle list only after finding that vertex on its side; the junction
+//     bookkeeping (curve_edge_) is only read (a collapse of an edge between two junction vertices
+//     rewrites it, and waits for the band);
+//   - each thread has its own guard scratch (scratch()) and counts its collapses there.
+// Everything else an operation reads (the size field and cap, the projections onto the reference,
+// L, the deviation bound) does not change during a sweep, and its queries are safe on two
+// threads. So each half has the result it would have alone, whichever thread runs it and whether
+// the other runs at the same time; then the band (every operation not done on a side, in index
+// order) runs on one thread. With threads_ 1 the halves run one after the other.
+//
+// Why: the collapse and relaxation sweeps are ~85 % of the remeshing at 21K (perf, 2026-11-27;
+// bench/RESULTS.md). The split axis is y: x and z were measured too and each left the shipped
+// 2.1K surface under the paper's Table 1 (bench/RESULTS.md, 2026-11-27).
+#include "mesher/remesh_complex.h"
+
+#include <algorithm>
+
+namespace tissuemesh {
+namespace {
+
+/// Below this many live vertices a sweep is not split: it takes milliseconds, and the band would
+/// hold a large share of it.
+constexpr std::size_t kPartitionFrom = 10000;
+/// The axis the halves are split across (header comment).
+constexpr int kSplitAxis = 1;
+
+}  // namespace
+
+bool RemeshComplex::assign_sides() {
+  side_.assign(x_.size(), -1);
+  if (alive_vertices_ < kPartitionFrom) return false;
+  std::vector<int> slabs;
+  slabs.reserve(alive_vertices_);
+  for (std::size_t v = 0; v < x_.size(); ++v)
+    if (vertex_alive_[v]) slabs.push_back(grid_.slab_of(x_[v][kSplitAxis], kSplitAxis));
+  std::nth_element(slabs.begin(), slabs.begin() + slabs.size() / 2, slabs.end());
+  band_slab_ = slabs[slabs.size() / 2];
+  std::size_t count[2] = {0, 0};
+  for (std::size_t v = 0; v < x_.size(); ++v) {
+    if (!vertex_alive_[v]) continue;
+    const int c = grid_.slab_of(x_[v][kSplitAxis], kSplitAxis);
+    if (c != band_slab_) ++count[side_[v] = c < band_slab_ ? 0 : 1];
+  }
+  return count[0] > 0 && count[1] > 0;
+}
+
+bool RemeshComplex::vertex_on_side(int v, int side) const {
+  if (side_[v] != side) return false;
+  for (int t : vt_[v])
+    for (int w : tri_[t])
+      if (side_[w] != side) return false;
+  return true;
+}
+
+bool RemeshComplex::point_on_side(const Vector3d& p, int side) const {
+  const int c = grid_.slab_of(p[kSplitAxis], kSplitAxis);
+  return side == 0 ? c < band_slab_ : c > band_slab_;
+}
+
+template <class Item, class SideOf, class Op>
+std::size_t RemeshComplex::partitioned_sweep(const std::vector<Item>& items, SideOf side_of, Op op) {
+  std::vector<char> done(items.size(), 0);
+  std::size_t changed[2] = {0, 0};
+  if (assign_sides()) {
+    ++partitioned_sweeps;
+    for (Scratch& sc : scratch_) {
+      if (sc.seen.size() < tri_.size()) sc.seen.resize(tri_.size(), 0);  // no triangle is added below
+      sc.collapsed = 0;
+    }
+#pragma omp parallel for num_threads(threads_) schedule(static, 1)
+    for (int side = 0; side < 2; ++side)
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        if (side_of(items[i]) != side) continue;
+        const int r = op(items[i], side);
+        if (r < 0) continue;  // touches the band or the other side: the band's
+        done[i] = 1;
+        changed[side] += static_cast<std::size_t>(r);
+      }
+    for (Scratch& sc : scratch_) {
+      alive_vertices_ -= sc.collapsed;
+      collapses += sc.collapsed;
+      sc.collapsed = 0;
+    }
+  }
+  std::fill(side_.begin(), side_.end(), -1);
+  std::size_t n = changed[0] + changed[1];
+  for (std::size_t i = 0; i < items.size(); ++i)
+    if (!done[i]) n += op(items[i], -1) > 0;
+  return n;
+}
+
+std::size_t RemeshComplex::collapse_short() {
+  rebuild_grid();
+  return partitioned_sweep(
+      edges(), [this](const std::array<int, 2>& e) { return side_[e[0]] == side_[e[1]] ? side_[e[0]] : -1; },
+      [this](const std::array<int, 2>& e, int side) { return collapse_edge(e[0], e[1], side); });
+}
+
+void RemeshComplex::relax() {
+  rebuild_grid();
+  std::vector<int> vertices(x_.size());
+  for (std::size_t v = 0; v < x_.size(); ++v) vertices[v] = static_cast<int>(v);
+  partitioned_sweep(
+      vertices, [this](int v) { return static_cast<int>(side_[v]); },
+      [this](int v, int side) { return relax_vertex(v, side); });
+}
+
+}  // namespace tissuemesh
