@@ -8,8 +8,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <omp.h>
-
 namespace tissuemesh {
 namespace {
 
@@ -468,7 +466,7 @@ bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
   represents_[a].clear();
   vertex_alive_[a] = 0;
   // Counted at once, or by the partitioned sweep once both halves are done (remesh_partition.cpp).
-  if (omp_in_parallel()) {
+  if (halves_running_) {
     ++scratch().collapsed;
   } else {
     --alive_vertices_;

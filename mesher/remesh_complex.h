@@ -314,6 +314,7 @@ class RemeshComplex {
   std::vector<signed char> side_;
   int band_slab_ = 0;
   int threads_ = 2;
+  bool halves_running_ = false;  ///< inside a partitioned sweep's halves: collapses are counted in scratch()
   std::vector<Vector3d> x_;
   std::vector<Kind> kind_;
   std::vector<int> owner_;  ///< patch (surface vertex), curve (curve vertex), -1 (corner)

@@ -15,7 +15,8 @@
 //     another vertex's triangle list only after finding that vertex on its side; the junction
 //     bookkeeping (curve_edge_) is only read (a collapse of an edge between two junction vertices
 //     rewrites it, and waits for the band);
-//   - each thread has its own guard scratch (scratch()) and counts its collapses there.
+//   - each thread has its own guard scratch (scratch()) and counts its collapses there; an
+//     exception on either thread is rethrown after both finished (mesher/run_at_once.h).
 // Everything else an operation reads (the size field and cap, the projections onto the reference,
 // L, the deviation bound) does not change during a sweep, and its queries are safe on two
 // threads. So each half has the result it would have alone, whichever thread runs it and whether
@@ -26,6 +27,8 @@
 // bench/RESULTS.md). The split axis is y: x and z were measured too and each left the shipped
 // 2.1K surface under the paper's Table 1 (bench/RESULTS.md, 2026-11-27).
 #include "mesher/remesh_complex.h"
+
+#include "mesher/run_at_once.h"
 
 #include <algorithm>
 
@@ -81,15 +84,25 @@ std::size_t RemeshComplex::partitioned_sweep(const std::vector<Item>& items, Sid
       if (sc.seen.size() < tri_.size()) sc.seen.resize(tri_.size(), 0);  // no triangle is added below
       sc.collapsed = 0;
     }
-#pragma omp parallel for num_threads(threads_) schedule(static, 1)
-    for (int side = 0; side < 2; ++side)
+    auto half = [&](int side) {
+      std::size_t n = 0;
       for (std::size_t i = 0; i < items.size(); ++i) {
         if (side_of(items[i]) != side) continue;
         const int r = op(items[i], side);
         if (r < 0) continue;  // touches the band or the other side: the band's
         done[i] = 1;
-        changed[side] += static_cast<std::size_t>(r);
+        n += static_cast<std::size_t>(r);
       }
+      changed[side] = n;
+    };
+    halves_running_ = true;  // try_collapse counts into scratch()
+    try {
+      run_at_once([&] { half(0); }, [&] { half(1); }, threads_);
+    } catch (...) {
+      halves_running_ = false;
+      throw;
+    }
+    halves_running_ = false;
     for (Scratch& sc : scratch_) {
       alive_vertices_ -= sc.collapsed;
       collapses += sc.collapsed;

@@ -1,6 +1,7 @@
 // run_at_once: two independent, coarse pieces of work on two OpenMP threads (SurfaceProjection's
-// trees). `first` and `second` must not write anything the other reads or writes; then the outcome
-// is the one of calling them one after the other. An exception never leaves the OpenMP region
+// trees, the remesher's partitioned sweeps). `first` and `second` must not write anything the
+// other reads or writes; then the outcome is the one of calling them one after the other (which
+// is what `threads` 1 does). An exception never leaves the OpenMP region
 // (that would call std::terminate): each is caught on its thread and rethrown on the caller's after
 // both finished, `first`'s when both threw, so callers see the errors serial code would raise.
 // Include it only from translation units compiled with OpenMP (without, the two run one after the
@@ -16,9 +17,9 @@
 namespace tissuemesh {
 
 template <class First, class Second>
-void run_at_once(First&& first, Second&& second) {
+void run_at_once(First&& first, Second&& second, int threads = 2) {
   std::exception_ptr first_error, second_error;
-#pragma omp parallel sections num_threads(2)
+#pragma omp parallel sections num_threads(threads)
   {
 #pragma omp section
     {
