@@ -130,6 +130,12 @@ class RemeshComplex {
   /// cap (its length at its midpoint, reaching up to 2 L), so that the next rounds remesh finer
   /// around what the polish could not fix. Returns the triangles entered.
   std::size_t cap_poor_triangles(double min_angle_rad);
+  /// Limits the sweeps (split_long, collapse_short, flip_all, relax) to edges whose midpoint, and
+  /// vertices that lie, within `radius` (mm) of the centroid of a triangle with an angle under
+  /// `min_angle_rad` now: a repair that remeshes around the poor triangles and leaves the rest
+  /// as it is. unfocus() lifts the limit.
+  void focus_on_poor_triangles(double min_angle_rad, double radius);
+  void unfocus() { focus_.clear(); }
 
   /// Collapses the relatively shortest or splits the relatively longest edges until the vertex
   /// count is `target`; false when it cannot get there (every candidate refused, even with the
@@ -311,6 +317,10 @@ class RemeshComplex {
   /// Partitioned sweeps (mesher/remesh_partition.cpp): per vertex, the half of the complex it was
   /// in when the sweep began (0 or 1, -1 the band between them), the grid slab of the band, and
   /// the threads to run the halves on.
+  /// Where the sweeps act (focus_on_poor_triangles; empty: everywhere) and whether p is there.
+  std::vector<Vector3d> focus_;
+  double focus_radius_ = 0.0;
+  bool in_focus(const Vector3d& p) const;
   std::vector<signed char> side_;
   int band_slab_ = 0;
   int threads_ = 2;

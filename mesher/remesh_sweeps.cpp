@@ -42,8 +42,20 @@ std::size_t RemeshComplex::sweep_edges(EdgeOperation operation) {
   rebuild_grid();
   std::size_t n = 0;
   for (const auto& e : edges())
-    if (edge_exists(e[0], e[1]) && operation(e[0], e[1])) ++n;
+    if (edge_exists(e[0], e[1]) && in_focus(0.5 * (x_[e[0]] + x_[e[1]])) && operation(e[0], e[1])) ++n;
   return n;
+}
+
+bool RemeshComplex::in_focus(const Vector3d& p) const {
+  if (focus_.empty()) return true;
+  const double r2 = focus_radius_ * focus_radius_;
+  return std::any_of(focus_.begin(), focus_.end(), [&](const Vector3d& c) { return (p - c).squaredNorm() <= r2; });
+}
+
+void RemeshComplex::focus_on_poor_triangles(double min_angle_rad, double radius) {
+  focus_.clear();
+  for (int t : poor_triangles(min_angle_rad)) focus_.push_back((x_[tri_[t][0]] + x_[tri_[t][1]] + x_[tri_[t][2]]) / 3.0);
+  focus_radius_ = radius;
 }
 
 template <class Bad>
@@ -68,7 +80,7 @@ std::size_t RemeshComplex::split_long() {
 int RemeshComplex::collapse_edge(int a, int b, int side) {
   // A collapse of a junction edge rewrites the junction bookkeeping, shared by the whole complex.
   if (side >= 0 && (kind_[a] != Kind::Surface && kind_[b] != Kind::Surface)) return -1;
-  if (!edge_exists(a, b)) return 0;
+  if (!edge_exists(a, b) || !in_focus(0.5 * (x_[a] + x_[b]))) return 0;
   if (side >= 0 && !(vertex_on_side(a, side) && vertex_on_side(b, side))) return -1;
   return relative_length(a, b) < kCollapseBelow && collapse_either(a, b, kSplitAbove);
 }
@@ -122,7 +134,7 @@ std::size_t RemeshComplex::split_poor(double min_angle_rad, std::vector<int>& ad
 }
 
 int RemeshComplex::relax_vertex(int v, int side) {
-  if (!vertex_alive_[v] || kind_[v] == Kind::Corner) return 0;
+  if (!vertex_alive_[v] || kind_[v] == Kind::Corner || !in_focus(x_[v])) return 0;
   if (side >= 0 && !vertex_on_side(v, side)) return -1;
   Vector3d target;
   if (kind_[v] == Kind::Surface) {

@@ -35,6 +35,11 @@ constexpr double kStuckBelow = 0.5;
 /// 27.6 / 26.6 / 30.0 / 29.8 (Q_min at 19,000: 0.498, 0.483, 0.480). Budgets 2,000 and 2,200 keep
 /// their polished result (every repair lowered Q_min), as do the shipped 2,100 and 21,000.
 constexpr int kRepairRounds = 2;
+/// The repair's sweeps act within this many L of a poor triangle (RemeshComplex::
+/// focus_on_poor_triangles): the size cap it enters around the triangle's shortest edge (length
+/// l) is under L within (L - 1.5 l) / 0.4 < 2.5 L of that edge; one L more, so that the repaired
+/// region ends where the size field is unchanged. Everything farther stays as polished.
+constexpr double kRepairReach = 3.5;
 
 }  // namespace
 
@@ -127,10 +132,12 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   std::unique_ptr<RemeshComplex> repaired;
   if (options.repair && first.p30_percent > 0.0) {
     auto trial = std::make_unique<RemeshComplex>(m);
+    trial->focus_on_poor_triangles(poor, kRepairReach * m.L);
     const std::size_t capped = trial->cap_poor_triangles(poor);
     try {
       for (int k = 0; k < kRepairRounds; ++k) round(*trial, false);
       const std::size_t trial_moves = finish(*trial);
+      trial->unfocus();
       TriSurface trial_result = trial->result(input);
       const SurfaceQuality q = surface_quality(trial_result);
       const bool keep = improves_table1_minima(first, q);
