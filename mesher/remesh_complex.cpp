@@ -55,9 +55,9 @@ Eigen::AlignedBox3d widened_bounds(const TriSurface& in) {
 RemeshComplex::RemeshComplex(const TriSurface& in, const SurfaceProjection& projection, const RemeshOptions& options)
     : proj_(projection),
       size_(options.relative_size),
-      cap_(kCapFactor, kCapGradation, widened_bounds(in)),
-      max_deviation_(options.max_deviation_mm),
       region_(widened_bounds(in)),
+      cap_(kCapFactor, kCapGradation, region_),
+      max_deviation_(options.max_deviation_mm),
       threads_(std::clamp(options.threads, 1, 2)) {
   x_ = in.points;
   reference_ = in.points;

@@ -290,13 +290,13 @@ class RemeshComplex {
 
   const SurfaceProjection& proj_;
   std::function<double(const Vector3d&)> size_;
+  Eigen::AlignedBox3d region_;  ///< the input's bounding box, widened: the grids cover it
   GradedSizeCap cap_;
   double max_deviation_ = 0.0;
   double slack_ = 1.0;  ///< deviation() multiplier, raised by match_count when stuck
   std::vector<Vector3d> reference_;             ///< the input vertices
   std::vector<std::vector<int>> represents_;    ///< per vertex: input vertices collapsed into it
   TriangleGrid grid_;
-  Eigen::AlignedBox3d region_;  ///< the input's bounding box, widened: the grids cover it
   /// Per triangle: its bounding box when last entered into grid_ (index_triangle; every change of a
   /// triangle or its vertices re-enters it, and compact() forces a full rebuild).
   std::vector<Eigen::AlignedBox3d> tri_box_;
@@ -314,13 +314,13 @@ class RemeshComplex {
   };
   std::array<Scratch, 2> scratch_;
   Scratch& scratch();
-  /// Partitioned sweeps (mesher/remesh_partition.cpp): per vertex, the half of the complex it was
-  /// in when the sweep began (0 or 1, -1 the band between them), the grid slab of the band, and
-  /// the threads to run the halves on.
   /// Where the sweeps act (focus_on_poor_triangles; empty: everywhere) and whether p is there.
   std::vector<Vector3d> focus_;
   double focus_radius_ = 0.0;
   bool in_focus(const Vector3d& p) const;
+  /// Partitioned sweeps (mesher/remesh_partition.cpp): per vertex, the half of the complex it was
+  /// in when the sweep began (0 or 1, -1 the band between them), the grid slab of the band, and
+  /// the threads to run the halves on.
   std::vector<signed char> side_;
   int band_slab_ = 0;
   int threads_ = 2;

@@ -44,7 +44,7 @@ void TriangleGrid::remove(int id) {
   for (int k = r.lo[2]; k <= r.hi[2]; ++k)
     for (int j = r.lo[1]; j <= r.hi[1]; ++j)
       for (int i = r.lo[0]; i <= r.hi[0]; ++i) {
-        std::vector<int>& cell = at(i, j, k);
+        std::vector<int>& cell = cells_[index(i, j, k)];
         cell.erase(std::find(cell.begin(), cell.end(), id));
       }
   range_[id].present = false;
@@ -62,7 +62,7 @@ void TriangleGrid::insert(int id, const Eigen::AlignedBox3d& box) {
   r.present = true;
   for (int k = r.lo[2]; k <= r.hi[2]; ++k)
     for (int j = r.lo[1]; j <= r.hi[1]; ++j)
-      for (int i = r.lo[0]; i <= r.hi[0]; ++i) at(i, j, k).push_back(id);
+      for (int i = r.lo[0]; i <= r.hi[0]; ++i) cells_[index(i, j, k)].push_back(id);
 }
 
 void TriangleGrid::query(const Eigen::AlignedBox3d& box, std::vector<int>& out) const {
@@ -70,7 +70,7 @@ void TriangleGrid::query(const Eigen::AlignedBox3d& box, std::vector<int>& out) 
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)
       for (int i = lo[0]; i <= hi[0]; ++i) {
-        const std::vector<int>& cell = at(i, j, k);
+        const std::vector<int>& cell = cells_[index(i, j, k)];
         out.insert(out.end(), cell.begin(), cell.end());
       }
 }

@@ -46,10 +46,7 @@ class TriangleGrid {
     bool present = false;
   };
   Eigen::Vector3i cell_of(const Eigen::Vector3d& p) const;
-  std::vector<int>& at(int i, int j, int k) { return cells_[(static_cast<std::size_t>(k) * dims_[1] + j) * dims_[0] + i]; }
-  const std::vector<int>& at(int i, int j, int k) const {
-    return cells_[(static_cast<std::size_t>(k) * dims_[1] + j) * dims_[0] + i];
-  }
+  std::size_t index(int i, int j, int k) const { return (static_cast<std::size_t>(k) * dims_[1] + j) * dims_[0] + i; }
 
   double inverse_cell_ = 1.0;
   Eigen::Vector3i origin_ = Eigen::Vector3i::Zero();  ///< absolute index of the first cell per axis

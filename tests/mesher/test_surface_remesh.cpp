@@ -81,6 +81,24 @@ const CoarsePhantom& coarse_phantom() {
   return phantom;
 }
 
+/// island_under_layer() coarsened by collapse sweeps alone at L = 3 voxels: a complex with
+/// triangles under 30 degrees, for the repair's building blocks (capping, focusing).
+struct CoarseIsland {
+  LabelImage img = island_under_layer();
+  TriSurface input = extract(img, 3).surface;
+  SurfaceProjection on{input};
+  RemeshComplex complex{input, on, options()};
+  CoarseIsland() {
+    complex.L = 3.0 * img.spacing.maxCoeff();
+    for (int k = 0; k < 5 && complex.collapse_short() > 0; ++k) complex.compact();
+  }
+  RemeshOptions options() const {
+    RemeshOptions o;
+    o.max_deviation_mm = 0.5 * img.spacing.norm();
+    return o;
+  }
+};
+
 }  // namespace
 
 TEST(SurfaceRemesh, NestedSpheresMeetTheBudgetClosedAndCloseToTheInput) {
@@ -374,14 +392,9 @@ TEST(SurfaceRemesh, CappingPoorTrianglesRefinesAroundThem) {
   // RemeshComplex::cap_poor_triangles enters each triangle under the angle with its shortest
   // edge into the size cap: it reports those triangles, and the next split sweep then splits
   // edges there that it leaves alone without the cap.
-  const LabelImage img = island_under_layer();
-  const TriSurface input = extract(img, 3).surface;
-  const SurfaceProjection on(input);
-  RemeshOptions options;
-  options.max_deviation_mm = 0.5 * img.spacing.norm();
-  RemeshComplex plain(input, on, options);
-  plain.L = 3.0 * img.spacing.maxCoeff();
-  for (int k = 0; k < 5 && plain.collapse_short() > 0; ++k) plain.compact();
+  CoarseIsland island;
+  const TriSurface& input = island.input;
+  RemeshComplex& plain = island.complex;
   const double poor = M_PI / 6.0;
   std::size_t under = 0;
   const TriSurface coarse = plain.result(input);
@@ -397,14 +410,9 @@ TEST(SurfaceRemesh, FocusedSweepsLeaveEverythingFarFromPoorTrianglesAlone) {
   // focus_on_poor_triangles limits the sweeps to within a radius of the poor triangles (the
   // repair's reach): a relaxation pass then moves no vertex farther than that from every poor
   // triangle's centroid, while it moves some near them, and without the focus it moves far ones too.
-  const LabelImage img = island_under_layer();
-  const TriSurface input = extract(img, 3).surface;
-  const SurfaceProjection on(input);
-  RemeshOptions options;
-  options.max_deviation_mm = 0.5 * img.spacing.norm();
-  RemeshComplex plain(input, on, options);
-  plain.L = 3.0 * img.spacing.maxCoeff();
-  for (int k = 0; k < 5 && plain.collapse_short() > 0; ++k) plain.compact();
+  CoarseIsland island;
+  const TriSurface& input = island.input;
+  RemeshComplex& plain = island.complex;
   const double poor = M_PI / 6.0, radius = 1.5 * plain.L;
   const TriSurface before = plain.result(input);
   std::vector<Eigen::Vector3d> centres;
