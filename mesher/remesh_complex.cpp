@@ -1,6 +1,7 @@
 #include "mesher/remesh_complex.h"
 
 #include "mesher/face_key.h"
+#include "mesher/run_at_once.h"
 #include "mesher/triangle_geometry.h"
 
 #include <Eigen/Geometry>
@@ -37,6 +38,9 @@ constexpr double kCapGradation = 0.4;
 /// degrees (measured on the 21K phantom's 1.4 x 1.5 mm fgt|skin contact: 29.1, 29.1, 121.8);
 /// four vertices evenly spaced along it make a near-square of two near-right triangles.
 constexpr int kMinLoopEdges = 4;
+/// edges() lists the two halves of the triangle list on two threads from this many triangles on
+/// (a smaller list takes less time than starting the threads).
+constexpr std::size_t kParallelEdgesFrom = 20000;
 
 /// The input's bounding box widened by a tenth of its diagonal on every side (a unit box for an
 /// empty input): the remesher's vertices stay on or near the input surface, so the grids' cells
@@ -138,18 +142,31 @@ double RemeshComplex::weighted_area() const {
 }
 
 std::vector<std::array<int, 2>> RemeshComplex::edges() const {
-  std::vector<std::array<int, 2>> out;
-  for (std::size_t t = 0; t < tri_.size(); ++t) {
-    if (!tri_alive_[t]) continue;
-    for (int i = 0; i < 3; ++i) {
-      const int a = tri_[t][i], b = tri_[t][(i + 1) % 3];
-      // Report each edge once: from its lowest-indexed live triangle.
-      bool first = true;
-      for (int u : vt_[a])
-        if (u < static_cast<int>(t) && has(u, b)) first = false;
-      if (first) out.push_back({std::min(a, b), std::max(a, b)});
+  // Each edge once, from its lowest-indexed live triangle: a triangle's edges depend on nothing
+  // but its own ring, so the two halves of the triangle list are listed on two threads and joined
+  // in order (the list is the one a single pass makes; 0.4 s of a 21K remeshing on one thread).
+  auto list = [this](std::size_t begin, std::size_t end, std::vector<std::array<int, 2>>& out) {
+    for (std::size_t t = begin; t < end; ++t) {
+      if (!tri_alive_[t]) continue;
+      for (int i = 0; i < 3; ++i) {
+        const int a = tri_[t][i], b = tri_[t][(i + 1) % 3];
+        bool first = true;
+        for (int u : vt_[a])
+          if (u < static_cast<int>(t) && has(u, b)) first = false;
+        if (first) out.push_back({std::min(a, b), std::max(a, b)});
+      }
     }
+  };
+  std::vector<std::array<int, 2>> out, second;
+  const std::size_t half = tri_.size() / 2;
+  out.reserve(3 * half / 2 + 16);
+  second.reserve(3 * half / 2 + 16);
+  if (tri_.size() < kParallelEdgesFrom) {
+    list(0, tri_.size(), out);
+    return out;
   }
+  run_at_once([&] { list(0, half, out); }, [&] { list(half, tri_.size(), second); }, threads_);
+  out.insert(out.end(), second.begin(), second.end());
   return out;
 }
 
