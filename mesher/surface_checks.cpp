@@ -1,6 +1,7 @@
 #include "mesher/surface_checks.h"
 
 #include "mesher/face_key.h"
+#include "mesher/intersecting_pairs.h"
 #include "mesher/triangle_intersection.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -116,8 +117,10 @@ struct Box3 {
   bool overlaps(const Box3& o) const { return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all(); }
 };
 
-/// Per tissue: the check without intersections, its outward triangles and their global ids.
-TissueSurfaceCheck tissue_check(const TriSurface& s, int id, std::vector<std::pair<int, int>>* pairs) {
+/// Per tissue: topology and volume; with `cgal_pairs`, also its intersecting pairs (global ids) by
+/// CGAL, else intersecting_pairs is 0 when the boundary can be checked (closed, oriented and
+/// vertex-manifold) and -1 when not.
+TissueSurfaceCheck tissue_check(const TriSurface& s, int id, bool cgal_pairs, std::vector<std::pair<int, int>>* pairs) {
   TissueSurfaceCheck c;
   c.tissue_id = id;
   c.name = s.tissue_names[static_cast<std::size_t>(id - 1)];
@@ -143,7 +146,9 @@ TissueSurfaceCheck tissue_check(const TriSurface& s, int id, std::vector<std::pa
     for (auto& t : tris)
       for (int& v : t) v = local[static_cast<std::size_t>(v)];
     c.nonmanifold_vertices = count_nonmanifold_vertices(tris, points.size());
-    if (c.nonmanifold_vertices == 0) {
+    if (c.nonmanifold_vertices == 0 && !cgal_pairs) {
+      c.intersecting_pairs = 0;
+    } else if (c.nonmanifold_vertices == 0) {
       std::vector<std::pair<int, int>> found;
       intersecting_pairs(points, tris, found);
       c.intersecting_pairs = static_cast<long long>(found.size());
@@ -162,16 +167,30 @@ bool SurfaceCheckReport::valid() const {
   return duplicate_triangles == 0 && junction_edges_off_junction == 0;
 }
 
-SurfaceCheckReport check_surface(const TriSurface& s, std::vector<int>* intersecting) {
+SurfaceCheckReport check_surface(const TriSurface& s, std::vector<int>* intersecting, PairSearch search) {
   SurfaceCheckReport report;
   // Tissues are independent: checked in parallel (the fat's boundary dominates, so two threads).
   const int tissues = static_cast<int>(s.tissue_names.size());
   report.tissues.resize(static_cast<std::size_t>(tissues));
   std::vector<std::vector<std::pair<int, int>>> pairs(static_cast<std::size_t>(tissues));
+  const bool cgal = search == PairSearch::Cgal;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(2)
   for (int id = 1; id <= tissues; ++id)
     report.tissues[static_cast<std::size_t>(id - 1)] =
-        tissue_check(s, id, intersecting ? &pairs[static_cast<std::size_t>(id - 1)] : nullptr);
+        tissue_check(s, id, cgal, intersecting ? &pairs[static_cast<std::size_t>(id - 1)] : nullptr);
+  if (!cgal) {
+    // One pass over all triangles; a pair counts in each checked tissue both triangles bound.
+    std::vector<char> checked(static_cast<std::size_t>(tissues));
+    for (int id = 1; id <= tissues; ++id) checked[static_cast<std::size_t>(id - 1)] = report.tissues[static_cast<std::size_t>(id - 1)].intersecting_pairs == 0;
+    for (const auto& [t, u] : intersecting_pairs_by_grid(s, checked)) {
+      const auto &lt = s.labels[static_cast<std::size_t>(t)], &lu = s.labels[static_cast<std::size_t>(u)];
+      for (int id : lt)
+        if (id > 0 && checked[static_cast<std::size_t>(id - 1)] && (id == lu[0] || id == lu[1])) {
+          ++report.tissues[static_cast<std::size_t>(id - 1)].intersecting_pairs;
+          pairs[static_cast<std::size_t>(id - 1)].emplace_back(t, u);
+        }
+    }
+  }
   if (intersecting) {
     intersecting->clear();
     for (const auto& tissue_pairs : pairs)

@@ -267,7 +267,7 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
   // boundary of well-composed regions has no intersections); the last round puts them there. After
   // the first, full check each round re-checks only around the vertices it moved.
   std::vector<int> bad;
-  out.checks = check_surface(s, &bad);
+  out.checks = check_surface(s, &bad, PairSearch::Grid);  // 400K triangles: the fast search
   for (int round = 0; !bad.empty() && round < kUnfoldRounds; ++round) {
     std::vector<int> moved;
     for (int t : bad)
