@@ -155,7 +155,12 @@ void relax(std::vector<Eigen::Vector3d>& x, const std::vector<std::array<int, 3>
   std::vector<Eigen::Vector3d> next = x;
   for (int it = 0; it < 2 * iterations; ++it) {
     const double factor = it % 2 == 0 ? kLambda : kMu;
-    for (std::size_t v = 0; v < x.size(); ++v) {
+    // Each vertex's new position depends only on the old positions: the vertices split over two
+    // threads give the same result.
+    const std::int64_t count = static_cast<std::int64_t>(x.size());
+#pragma omp parallel for schedule(static) num_threads(2)
+    for (std::int64_t i = 0; i < count; ++i) {
+      const auto v = static_cast<std::size_t>(i);
       if (pinned[v]) continue;
       const auto& n = kind[v] == VertexKind::Curve ? curve_adj[v] : surface_adj[v];
       Eigen::Vector3d mean = Eigen::Vector3d::Zero();
