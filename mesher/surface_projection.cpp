@@ -1,6 +1,7 @@
 #include "mesher/surface_projection.h"
 
 #include "core/errors.h"
+#include "mesher/patch_grid.h"
 #include "mesher/run_at_once.h"
 
 #include <CGAL/AABB_segment_primitive.h>
@@ -11,6 +12,8 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
+#include <string>
 
 namespace tissuemesh {
 namespace {
@@ -47,10 +50,9 @@ int PatchNumbering::patch_of_pair(int p, int q) const {
 }
 
 struct SurfaceProjection::Trees {
-  std::vector<std::vector<Triangle>> patch_triangles;
   std::vector<std::vector<Segment>> curve_segments;
   std::vector<Triangle> all_triangles;
-  std::vector<std::unique_ptr<TriangleTree>> patch;
+  std::unique_ptr<PatchGrid> patches;
   std::vector<std::unique_ptr<SegmentTree>> curve;
   std::unique_ptr<TriangleTree> all;
 };
@@ -58,13 +60,12 @@ struct SurfaceProjection::Trees {
 SurfaceProjection::SurfaceProjection(const TriSurface& reference)
     : patches_(number_patches(reference)), trees_(std::make_unique<Trees>()) {
   Trees& t = *trees_;
-  t.patch_triangles.resize(patches_.pair_of_patch.size());
   t.all_triangles.reserve(reference.triangles.size());
-  for (std::size_t i = 0; i < reference.triangles.size(); ++i) {
-    const std::array<int, 3>& v = reference.triangles[i];
-    const Triangle tri(point(reference.points[v[0]]), point(reference.points[v[1]]), point(reference.points[v[2]]));
-    t.patch_triangles[patches_.patch_of_triangle[i]].push_back(tri);
-    t.all_triangles.push_back(tri);
+  std::vector<std::array<Eigen::Vector3d, 3>> corners;
+  corners.reserve(reference.triangles.size());
+  for (const std::array<int, 3>& v : reference.triangles) {
+    corners.push_back({reference.points[v[0]], reference.points[v[1]], reference.points[v[2]]});
+    t.all_triangles.emplace_back(point(reference.points[v[0]]), point(reference.points[v[1]]), point(reference.points[v[2]]));
   }
   t.curve_segments.resize(reference.junctions.size());
   for (std::size_t c = 0; c < reference.junctions.size(); ++c) {
@@ -72,35 +73,36 @@ SurfaceProjection::SurfaceProjection(const TriSurface& reference)
     for (std::size_t i = 0; i + 1 < line.size(); ++i)
       t.curve_segments[c].emplace_back(point(reference.points[line[i]]), point(reference.points[line[i + 1]]));
   }
-  // The whole surface's tree holds as many triangles as all patch trees together, and no tree
-  // depends on another: its primitives and nearest-point search tree (accelerate_distance_queries)
-  // are built on one thread while the patch and curve trees' are built on the other (each is the
-  // same whichever thread builds it). CGAL builds a tree's box hierarchy at its first query.
+  // The whole surface's tree (distance(): an independent measure, CGAL's) and the patch grid
+  // with the curve trees share nothing: the tree with its nearest-point search tree
+  // (accelerate_distance_queries) is built on one thread, the grid and the curve trees on the
+  // other (each is the same whichever thread builds it). CGAL builds a tree's box hierarchy at
+  // its first query.
   run_at_once(
       [&] {
         t.all = std::make_unique<TriangleTree>(t.all_triangles.begin(), t.all_triangles.end());
         t.all->accelerate_distance_queries();
       },
       [&] {
-        for (const std::vector<Triangle>& tris : t.patch_triangles) {
-          t.patch.push_back(std::make_unique<TriangleTree>(tris.begin(), tris.end()));
-          t.patch.back()->accelerate_distance_queries();
-          }
+        t.patches = std::make_unique<PatchGrid>(corners, patches_.patch_of_triangle);
         for (const std::vector<Segment>& segments : t.curve_segments) {
           t.curve.push_back(std::make_unique<SegmentTree>(segments.begin(), segments.end()));
           t.curve.back()->accelerate_distance_queries();
-          }
+        }
       });
 }
 
 SurfaceProjection::~SurfaceProjection() = default;
 
 Eigen::Vector3d SurfaceProjection::onto_patch(int patch, const Eigen::Vector3d& p, Eigen::Vector3d* normal) const {
-  if (!normal) return vector(trees_->patch.at(patch)->closest_point(point(p)));
-  const auto hit = trees_->patch.at(patch)->closest_point_and_primitive(point(p));
-  const Triangle& t = *hit.second;
-  *normal = (vector(t[1]) - vector(t[0])).cross(vector(t[2]) - vector(t[0])).normalized();
-  return vector(hit.first);
+  if (patch < 0 || patch >= static_cast<int>(patches_.pair_of_patch.size()))
+    throw std::out_of_range("SurfaceProjection::onto_patch: no patch " + std::to_string(patch));
+  const PatchGrid::Hit hit = trees_->patches->closest(patch, p);
+  if (normal) {
+    const Triangle& t = trees_->all_triangles[static_cast<std::size_t>(hit.triangle)];
+    *normal = (vector(t[1]) - vector(t[0])).cross(vector(t[2]) - vector(t[0])).normalized();
+  }
+  return hit.point;
 }
 
 Eigen::Vector3d SurfaceProjection::onto_curve(int curve, const Eigen::Vector3d& p) const {

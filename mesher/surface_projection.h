@@ -3,10 +3,11 @@
 //
 // A patch is one region pair (p|q) of the reference TriSurface, numbered in the order the pairs
 // first occur in its triangle list (patch_of_triangle()); a curve is one junction polyline. Queries
-// return the closest point on that patch's triangles or that curve's segments (CGAL AABB trees,
-// double precision), so a projected point lies on the reference surface up to round-off and a
-// projected curve point on the reference junction. Build once; queries are const and may run
-// from several threads (CGAL builds a tree lazily, under its own mutex, on the first query).
+// return the closest point on that patch's triangles (a grid of triangle boxes, mesher/patch_grid.h)
+// or that curve's segments (CGAL AABB trees), in double precision, so a projected point lies on
+// the reference surface up to round-off and a projected curve point on the reference junction.
+// distance() uses a CGAL AABB tree of the whole surface. Build once; queries are const and may
+// run from several threads (CGAL builds a tree lazily, under its own mutex, on the first query).
 #pragma once
 
 #include "core/tri_surface.h"

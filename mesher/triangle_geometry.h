@@ -23,7 +23,10 @@ double min_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen
 /// edge; the paper's Table 1): 1 for the equilateral triangle, 0 for a degenerate one.
 double triangle_quality(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
-/// Distance from p to the closed triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
+/// The point of the closed triangle abc closest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                          const Eigen::Vector3d& c);
+/// Distance from p to the closed triangle abc: |p - closest_point_on_triangle(p, a, b, c)|.
 double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                const Eigen::Vector3d& c);
 
