@@ -110,6 +110,13 @@ class RemeshComplex {
   /// Tries the flip of every edge of the triangles around `vertices` (after they moved: only those
   /// triangles' angles changed, so only their edges can have become flippable); returns the flips.
   std::size_t flip_around(const std::vector<int>& vertices);
+  /// Removes each surface vertex of at most four triangles, one of them with an angle under
+  /// `min_angle_rad`, by collapsing it into the neighbour that leaves the largest smallest angle,
+  /// when that beats the smallest angle of its triangles now and the collapse's guards allow it
+  /// (a vertex of three triangles in a flat patch has ~120 degrees in each, so each of them has
+  /// an angle of 30 degrees or less beside it, whatever the vertex's position); returns the
+  /// removals. The caller restores the vertex budget.
+  std::size_t collapse_poor(double min_angle_rad);
   /// Splits the longest edge of each triangle with an angle under `min_angle_rad` when the
   /// triangles the split makes all have a larger smallest angle than the ones it replaces (a poor
   /// triangle whose short edge no move can lengthen, e.g. one held by the approximation bound);

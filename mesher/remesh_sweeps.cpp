@@ -15,6 +15,10 @@ namespace {
 /// Botsch & Kobbelt's thresholds: splitting above 4/3 h and collapsing below 4/5 h leaves edges
 /// whose lengths average about h and never oscillate between a split and a collapse.
 constexpr double kSplitAbove = 4.0 / 3.0;
+/// collapse_poor removes vertices with at most this many triangles: three or four triangles
+/// around a vertex of a nearly flat patch leave angles of ~90-120 degrees at it, and so small
+/// ones beside it, which no move of the vertex fixes.
+constexpr std::size_t kCollapsePoorValence = 4;
 constexpr double kCollapseBelow = 4.0 / 5.0;
 /// Pattern search of search_min_angle and smooth_low_quality: first step a quarter of the
 /// shortest ring edge, halved five times (the last step is 1/128 of that edge).
@@ -129,6 +133,39 @@ std::size_t RemeshComplex::split_poor(double min_angle_rad, std::vector<int>& ad
     if (!(after > before) || !split(a, b)) continue;
     added.push_back(static_cast<int>(x_.size()) - 1);
     ++n;
+  }
+  return n;
+}
+
+std::size_t RemeshComplex::collapse_poor(double min_angle_rad) {
+  rebuild_grid();
+  const std::vector<char> marked = vertices_of(poor_triangles(min_angle_rad));
+  std::size_t n = 0;
+  std::vector<int> nb;
+  for (int v = 0; v < static_cast<int>(marked.size()); ++v) {
+    if (!marked[v] || !vertex_alive_[v] || kind_[v] != Kind::Surface || vt_[v].size() > kCollapsePoorValence) continue;
+    const double before = ring_min_angle(v, x_[v]);
+    if (!(before < min_angle_rad)) continue;  // an earlier removal next to it fixed it
+    // The neighbour to collapse into: the one whose remaining triangles have the largest
+    // smallest angle, if that beats the one v's triangles have now.
+    neighbours(v, nb);
+    int best = -1;
+    double best_after = before;
+    for (int w : nb) {
+      double after = INFINITY;
+      for (int t : vt_[v]) {
+        if (has(t, w)) continue;
+        const NewTriangle q = moved_triangle(t, v, x_[w], w);
+        after = std::min(after, min_angle(q.p[0], q.p[1], q.p[2]));
+      }
+      if (after > best_after) {
+        best_after = after;
+        best = w;
+      }
+    }
+    // No bound on the edges left: they are edges of v's ring (and one diagonal for four
+    // triangles), and the angle test above already bounds their shape.
+    if (best >= 0 && try_collapse(v, best, INFINITY)) ++n;
   }
   return n;
 }

@@ -109,6 +109,13 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
       }
     };
     smooth_until_still();
+    // Vertices of three or four triangles left in poor triangles go (collapse_poor); the budget
+    // is met again by splitting the relatively longest edges, and the smoothing repeats.
+    if (c.collapse_poor(poor) > 0) {
+      meet_budget();
+      c.flip_all();
+      smooth_until_still();
+    }
     std::vector<int> added;
     if (c.split_poor(poor, added) > 0) {
       c.flip_around(added);
