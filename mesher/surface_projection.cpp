@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <map>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -54,7 +55,8 @@ struct SurfaceProjection::Trees {
   std::vector<Triangle> all_triangles;
   std::unique_ptr<PatchGrid> patches;
   std::vector<std::unique_ptr<SegmentTree>> curve;
-  std::unique_ptr<TriangleTree> all;
+  std::unique_ptr<TriangleTree> all;  ///< built by the first distance() call
+  std::once_flag all_built;
 };
 
 SurfaceProjection::SurfaceProjection(const TriSurface& reference)
@@ -73,23 +75,17 @@ SurfaceProjection::SurfaceProjection(const TriSurface& reference)
     for (std::size_t i = 0; i + 1 < line.size(); ++i)
       t.curve_segments[c].emplace_back(point(reference.points[line[i]]), point(reference.points[line[i + 1]]));
   }
-  // The whole surface's tree (distance(): an independent measure, CGAL's) and the patch grid
-  // with the curve trees share nothing: the tree with its nearest-point search tree
-  // (accelerate_distance_queries) is built on one thread, the grid and the curve trees on the
-  // other (each is the same whichever thread builds it). CGAL builds a tree's box hierarchy at
-  // its first query.
-  run_at_once(
-      [&] {
-        t.all = std::make_unique<TriangleTree>(t.all_triangles.begin(), t.all_triangles.end());
-        t.all->accelerate_distance_queries();
-      },
-      [&] {
-        t.patches = std::make_unique<PatchGrid>(corners, patches_.patch_of_triangle);
-        for (const std::vector<Segment>& segments : t.curve_segments) {
-          t.curve.push_back(std::make_unique<SegmentTree>(segments.begin(), segments.end()));
-          t.curve.back()->accelerate_distance_queries();
-        }
-      });
+  // The patch grid and the curve trees share nothing: built on two threads (each is the same
+  // whichever thread builds it). CGAL builds a tree's box hierarchy at its first query; the whole
+  // surface's tree, only for distance() (a measurement after the remeshing, not part of it), is
+  // built at the first call of distance().
+  run_at_once([&] { t.patches = std::make_unique<PatchGrid>(corners, patches_.patch_of_triangle); },
+              [&] {
+                for (const std::vector<Segment>& segments : t.curve_segments) {
+                  t.curve.push_back(std::make_unique<SegmentTree>(segments.begin(), segments.end()));
+                  t.curve.back()->accelerate_distance_queries();
+                }
+              });
 }
 
 SurfaceProjection::~SurfaceProjection() = default;
@@ -110,7 +106,12 @@ Eigen::Vector3d SurfaceProjection::onto_curve(int curve, const Eigen::Vector3d& 
 }
 
 double SurfaceProjection::distance(const Eigen::Vector3d& p) const {
-  return std::sqrt(trees_->all->squared_distance(point(p)));
+  Trees& t = *trees_;
+  std::call_once(t.all_built, [&t] {
+    t.all = std::make_unique<TriangleTree>(t.all_triangles.begin(), t.all_triangles.end());
+    t.all->accelerate_distance_queries();
+  });
+  return std::sqrt(t.all->squared_distance(point(p)));
 }
 
 }  // namespace tissuemesh

@@ -6,8 +6,10 @@
 // return the closest point on that patch's triangles (a grid of triangle boxes, mesher/patch_grid.h)
 // or that curve's segments (CGAL AABB trees), in double precision, so a projected point lies on
 // the reference surface up to round-off and a projected curve point on the reference junction.
-// distance() uses a CGAL AABB tree of the whole surface. Build once; queries are const and may
-// run from several threads (CGAL builds a tree lazily, under its own mutex, on the first query).
+// distance() uses a CGAL AABB tree of the whole surface, built at its first call. Build once;
+// queries are const and may run from several threads (the whole-surface tree is built once under
+// std::call_once; CGAL builds a tree's box hierarchy lazily, under its own mutex, on its first
+// query).
 #pragma once
 
 #include "core/tri_surface.h"
