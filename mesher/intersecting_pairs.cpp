@@ -68,9 +68,12 @@ std::vector<std::array<int, 2>> intersecting_pairs_by_grid(const TriSurface& s, 
   // when there would be more than kMaxCells of them.
   double cell = std::max(kCellPerExtent * extent / static_cast<double>(used), 1e-9);
   Eigen::Array3i dims;
-  for (;;) {
-    dims = ((all.max() - all.min()).array() / cell).floor().cast<int>() + 1;
-    if (static_cast<double>(dims[0]) * dims[1] * dims[2] <= kMaxCells) break;
+  for (;;) {  // in double first: a tiny cell must not overflow int
+    const Eigen::Array3d d = ((all.max() - all.min()).array() / cell).floor() + 1.0;
+    if (d.prod() <= kMaxCells) {
+      dims = d.cast<int>();
+      break;
+    }
     cell *= 1.25;
   }
   auto cell_of = [&](const Eigen::Vector3d& p) {

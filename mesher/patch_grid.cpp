@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace tissuemesh {
 namespace {
@@ -29,6 +30,8 @@ double box_distance2(const Vector3d& p, const Vector3d& lo, const Vector3d& hi) 
 
 PatchGrid::PatchGrid(const std::vector<std::array<Vector3d, 3>>& triangles, const std::vector<int>& patch)
     : triangles_(triangles), patch_(patch) {
+  if (patch_.size() != triangles_.size() || std::any_of(patch_.begin(), patch_.end(), [](int k) { return k < 0; }))
+    throw std::invalid_argument("PatchGrid: one patch id >= 0 per triangle expected");
   const std::size_t n = triangles_.size();
   lo_.resize(n);
   hi_.resize(n);
@@ -47,9 +50,12 @@ PatchGrid::PatchGrid(const std::vector<std::array<Vector3d, 3>>& triangles, cons
   if (n == 0) return;
   origin_ = bounds.min();
   cell_ = std::max(kCellPerExtent * extent / static_cast<double>(n), 1e-9);
-  for (;;) {
-    dims_ = ((bounds.max() - bounds.min()).array() / cell_).floor().cast<int>() + 1;
-    if (static_cast<double>(dims_[0]) * dims_[1] * dims_[2] <= kMaxCells) break;
+  for (;;) {  // in double first: a tiny cell must not overflow int
+    const Eigen::Array3d d = ((bounds.max() - bounds.min()).array() / cell_).floor() + 1.0;
+    if (d.prod() <= kMaxCells) {
+      dims_ = d.cast<int>();
+      break;
+    }
     cell_ *= 1.25;
   }
   const std::size_t cells = static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2];
@@ -69,27 +75,36 @@ PatchGrid::PatchGrid(const std::vector<std::array<Vector3d, 3>>& triangles, cons
 }
 
 Array3i PatchGrid::cell_of(const Vector3d& p) const {
-  const Array3i c = ((p - origin_).array() / cell_).floor().cast<int>();
-  return c.max(0).min(dims_ - 1);
+  // Clamped in double (a point far outside, or NaN, must not overflow int).
+  Array3i c;
+  for (int a = 0; a < 3; ++a) {
+    const double x = std::floor((p[a] - origin_[a]) / cell_);
+    c[a] = x > 0.0 ? static_cast<int>(std::min(x, static_cast<double>(dims_[a] - 1))) : 0;
+  }
+  return c;
 }
 
 PatchGrid::Hit PatchGrid::closest(int patch, const Vector3d& p) const {
   Hit best;
-  if (patch < 0 || patch >= static_cast<int>(patch_triangles_.size()) || patch_triangles_[static_cast<std::size_t>(patch)] == 0)
+  if (patch < 0 || patch >= static_cast<int>(patch_triangles_.size()) || patch_triangles_[static_cast<std::size_t>(patch)] == 0 ||
+      !p.allFinite())
     return best;
   double best2 = std::numeric_limits<double>::infinity();
   auto visit = [&](int i, int j, int k) {
     const Vector3d cell_lo = origin_ + cell_ * Vector3d(i, j, k);
-    if (box_distance2(p, cell_lo, cell_lo + Vector3d::Constant(cell_)) >= best2) return;  // nothing nearer in it
+    // Nothing nearer in it (while nothing is found, every cell is searched: a distance can
+    // overflow to infinity for a point very far away).
+    if (best.triangle >= 0 && box_distance2(p, cell_lo, cell_lo + Vector3d::Constant(cell_)) >= best2) return;
     const std::int64_t c = index(Array3i(i, j, k));
     for (std::int64_t e = start_[static_cast<std::size_t>(c)]; e < start_[static_cast<std::size_t>(c) + 1]; ++e) {
       const int t = list_[static_cast<std::size_t>(e)];
-      if (patch_[static_cast<std::size_t>(t)] != patch || box_distance2(p, lo_[static_cast<std::size_t>(t)], hi_[static_cast<std::size_t>(t)]) >= best2)
+      if (patch_[static_cast<std::size_t>(t)] != patch ||
+          (best.triangle >= 0 && box_distance2(p, lo_[static_cast<std::size_t>(t)], hi_[static_cast<std::size_t>(t)]) >= best2))
         continue;
       const auto& q = triangles_[static_cast<std::size_t>(t)];
       const Vector3d x = closest_point_on_triangle(p, q[0], q[1], q[2]);
       const double d2 = (p - x).squaredNorm();
-      if (d2 < best2) {
+      if (best.triangle < 0 || d2 < best2) {
         best2 = d2;
         best.point = x;
         best.triangle = t;

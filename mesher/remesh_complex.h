@@ -20,6 +20,9 @@
 //             raises the smallest angle around them; a vertex for which none does gets a
 //             pattern search over its patch (or along its junction) for the position with the
 //             largest smallest angle.
+//   collapse_poor  a surface vertex of three or four triangles, one of them under the threshold,
+//             collapses into the neighbour that leaves the largest smallest angle, when that is
+//             larger than its triangles' smallest angle now (a collapse with all its guards).
 //   split_poor  the longest edge of a triangle still under the threshold is split when every
 //             triangle the split makes has a larger smallest angle than the ones it replaces.
 //   smooth_low_quality  the surface vertices of triangles under a Frey-Borouchaki quality move,

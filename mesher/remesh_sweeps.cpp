@@ -15,11 +15,11 @@ namespace {
 /// Botsch & Kobbelt's thresholds: splitting above 4/3 h and collapsing below 4/5 h leaves edges
 /// whose lengths average about h and never oscillate between a split and a collapse.
 constexpr double kSplitAbove = 4.0 / 3.0;
+constexpr double kCollapseBelow = 4.0 / 5.0;
 /// collapse_poor removes vertices with at most this many triangles: three or four triangles
 /// around a vertex of a nearly flat patch leave angles of ~90-120 degrees at it, and so small
 /// ones beside it, which no move of the vertex fixes.
 constexpr std::size_t kCollapsePoorValence = 4;
-constexpr double kCollapseBelow = 4.0 / 5.0;
 /// Pattern search of search_min_angle and smooth_low_quality: first step a quarter of the
 /// shortest ring edge, halved five times (the last step is 1/128 of that edge).
 constexpr double kSearchFirstStep = 0.25;

@@ -19,7 +19,8 @@
 //      junction curve), corners stay; every vertex is clamped to the box spanned by its 8 voxel
 //      centres, so the surface never leaves the half-voxel band around the voxel boundary;
 //   5. each quad is split along its shorter diagonal into two triangles;
-//   6. where relaxation folded a tissue's boundary onto itself (CGAL self-intersection test), the
+//   6. where relaxation folded a tissue's boundary onto itself (check_surface with
+//      PairSearch::Grid: CGAL's self-intersection rule, mesher/intersecting_pairs.h), the
 //      vertices of the intersecting triangles move back towards their voxel corners.
 // Averaging commutes with the affine index -> LPS map, so relaxing in voxel-index space is the same
 // as relaxing in millimetres, anisotropic spacing included. Deterministic (fixed scan orders).

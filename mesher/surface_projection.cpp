@@ -94,6 +94,9 @@ Eigen::Vector3d SurfaceProjection::onto_patch(int patch, const Eigen::Vector3d& 
   if (patch < 0 || patch >= static_cast<int>(patches_.pair_of_patch.size()))
     throw std::out_of_range("SurfaceProjection::onto_patch: no patch " + std::to_string(patch));
   const PatchGrid::Hit hit = trees_->patches->closest(patch, p);
+  if (hit.triangle < 0)
+    throw std::invalid_argument("SurfaceProjection::onto_patch: no closest point on patch " + std::to_string(patch) +
+                                " (a non-finite query point)");
   if (normal) {
     const Triangle& t = trees_->all_triangles[static_cast<std::size_t>(hit.triangle)];
     *normal = (vector(t[1]) - vector(t[0])).cross(vector(t[2]) - vector(t[0])).normalized();
@@ -105,13 +108,17 @@ Eigen::Vector3d SurfaceProjection::onto_curve(int curve, const Eigen::Vector3d& 
   return vector(trees_->curve.at(curve)->closest_point(point(p)));
 }
 
-double SurfaceProjection::distance(const Eigen::Vector3d& p) const {
+void SurfaceProjection::prepare_distance() const {
   Trees& t = *trees_;
   std::call_once(t.all_built, [&t] {
     t.all = std::make_unique<TriangleTree>(t.all_triangles.begin(), t.all_triangles.end());
     t.all->accelerate_distance_queries();
   });
-  return std::sqrt(t.all->squared_distance(point(p)));
+}
+
+double SurfaceProjection::distance(const Eigen::Vector3d& p) const {
+  prepare_distance();
+  return std::sqrt(trees_->all->squared_distance(point(p)));
 }
 
 }  // namespace tissuemesh

@@ -46,6 +46,10 @@ class SurfaceProjection {
   Eigen::Vector3d onto_curve(int curve, const Eigen::Vector3d& p) const;
   /// Distance (mm) from p to the closest point of the whole reference surface.
   double distance(const Eigen::Vector3d& p) const;
+  /// Builds the whole-surface tree distance() queries (its first call does it otherwise). Call it
+  /// before querying distance() from several threads: a failure to build is then thrown here, on
+  /// the caller's thread, not inside their parallel region.
+  void prepare_distance() const;
 
  private:
   struct Trees;

@@ -7,7 +7,10 @@
 // measured count after the first rounds, and a final pass collapses the shortest or splits the
 // longest edges (relative to h) until the count is exactly the budget. Polish: flips, relaxation,
 // then angle-improving smoothing of the vertices of triangles with an angle under 30 degrees
-// (towards the neighbours' mean, else the best position a pattern search over the patch finds).
+// (towards the neighbours' mean, else the best position a pattern search over the patch finds);
+// vertices of three or four triangles still in such a triangle are removed (the budget is then
+// met again by splits, and the smoothing repeats), and the longest edge of a triangle still
+// under 30 degrees is split where that raises its angles.
 // From the second round on, h is capped near junction edges that stay far shorter than h (fixed
 // corners close together, guards): mesher/graded_size_cap.h. Repair: when the polished result
 // still has an angle under 30 degrees, a copy caps h around each such triangle's shortest edge,
@@ -22,7 +25,8 @@
 // Validity: no operation is applied that would make two triangles intersect (an exact guard,
 // mesher/remesh_complex.h), so a valid input gives an intersection-free result at any budget; the
 // result is checked again (mesher/surface_checks.h) and the checks returned, the caller decides.
-// Deterministic. Not parallel.
+// Deterministic; the same result on one thread as on two (the collapse and relaxation sweeps of a
+// large complex run in two halves, mesher/remesh_partition.cpp).
 #pragma once
 
 #include "core/progress.h"

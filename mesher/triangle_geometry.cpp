@@ -37,15 +37,30 @@ Vector3d closest_point_on_triangle(const Vector3d& p, const Vector3d& a, const V
   const Vector3d bp = p - b;
   const double d3 = ab.dot(bp), d4 = ac.dot(bp);
   if (d3 >= 0 && d4 <= d3) return b;
+  // The edge cases divide by a squared edge length (d1 - d3 = |ab|^2, and so on), the interior by
+  // twice the squared area: zero only for a degenerate triangle, handled apart below.
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0 && d1 - d3 > 0) return a + d1 / (d1 - d3) * ab;
   const Vector3d cp = p - c;
   const double d5 = ab.dot(cp), d6 = ac.dot(cp);
   if (d6 >= 0 && d5 <= d6) return c;
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0 && d2 - d6 > 0) return a + d2 / (d2 - d6) * ac;
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0 && (d4 - d3) + (d5 - d6) > 0)
+    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  if (!(va + vb + vc > 0)) {
+    // Collinear or coincident corners: the triangle is its edges; the nearest of their closest points.
+    auto on_segment = [&p](const Vector3d& u, const Vector3d& w) {
+      const Vector3d uw = w - u;
+      const double len2 = uw.squaredNorm();
+      return len2 > 0 ? Vector3d(u + std::clamp((p - u).dot(uw) / len2, 0.0, 1.0) * uw) : u;
+    };
+    Vector3d best = on_segment(a, b);
+    for (const Vector3d& q : {on_segment(b, c), on_segment(c, a)})
+      if ((p - q).squaredNorm() < (p - best).squaredNorm()) best = q;
+    return best;
+  }
   const double denom = 1.0 / (va + vb + vc);
   return a + ab * (vb * denom) + ac * (vc * denom);
 }

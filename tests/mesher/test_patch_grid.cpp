@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <random>
 
 using namespace tissuemesh;
@@ -58,4 +60,23 @@ TEST(PatchGrid, APatchWithoutTrianglesHasNoClosestPoint) {
   const PatchGrid::Hit hit = grid.closest(1, Eigen::Vector3d(0.2, 0.2, 1.0));
   EXPECT_EQ(hit.triangle, 0);
   EXPECT_LT((hit.point - Eigen::Vector3d(0.2, 0.2, 0.0)).norm(), kRelativeRoundoff);  // barycentric round-off
+}
+
+TEST(PatchGrid, ClosestPointOnADegenerateTriangleLiesOnItsEdges) {
+  // Coincident or collinear corners: Ericson's edge and interior cases would divide by zero; the
+  // closest point is then the nearest one on the triangle's edges.
+  const Eigen::Vector3d a(0, 0, 0), b(2, 0, 0), p(1, 1, 0);
+  EXPECT_LT((closest_point_on_triangle(p, a, a, b) - Eigen::Vector3d(1, 0, 0)).norm(), kRelativeRoundoff);
+  EXPECT_LT((closest_point_on_triangle(p, a, Eigen::Vector3d(1, 0, 0), b) - Eigen::Vector3d(1, 0, 0)).norm(), kRelativeRoundoff);
+  EXPECT_LT((closest_point_on_triangle(p, a, a, a) - a).norm(), kRelativeRoundoff);
+  EXPECT_EQ(point_triangle_distance(Eigen::Vector3d(3, 0, 0), a, b, b), 1.0);
+}
+
+TEST(PatchGrid, RefusesAPatchListOfTheWrongSizeAndFindsNothingForANonFinitePoint) {
+  const std::vector<std::array<Eigen::Vector3d, 3>> tris{{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)}};
+  EXPECT_THROW(PatchGrid(tris, {}), std::invalid_argument);
+  EXPECT_THROW(PatchGrid(tris, {-1}), std::invalid_argument);
+  const PatchGrid grid(tris, {0});
+  EXPECT_EQ(grid.closest(0, Eigen::Vector3d(NAN, 0, 0)).triangle, -1);
+  EXPECT_EQ(grid.closest(0, Eigen::Vector3d(1e300, -1e300, 0)).triangle, 0);  // far away, still found
 }

@@ -229,6 +229,15 @@ TEST(SurfaceChecks, GridPairSearchFindsExactlyWhatCgalFinds) {
     for (auto& p : s.points) p += Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
     cases.push_back(s);
   }
+  // The most folded case with one outer triangle of tissue 1 gone: tissue 1 is open (not
+  // checked), the others are, and their interfaces with tissue 1 count only for them.
+  cases.push_back(cases.back());
+  for (std::size_t t = 0; t < cases.back().triangles.size(); ++t)
+    if (cases.back().labels[t] == std::array<int, 2>{0, 1}) {
+      cases.back().triangles.erase(cases.back().triangles.begin() + static_cast<std::ptrdiff_t>(t));
+      cases.back().labels.erase(cases.back().labels.begin() + static_cast<std::ptrdiff_t>(t));
+      break;
+    }
   cases.push_back(corner_tetrahedron());
   cases.back().points[3] = {0.5, 0.0, 0.0};
   cases.push_back(corner_tetrahedron());
@@ -246,4 +255,7 @@ TEST(SurfaceChecks, GridPairSearchFindsExactlyWhatCgalFinds) {
     pairs_in_every_tissue_case += every_tissue;
   }
   EXPECT_GE(pairs_in_every_tissue_case, 2);  // the comparison covered pairs in each of the three tissues
+  const SurfaceCheckReport mixed = check_surface(cases[3], nullptr, PairSearch::Grid);
+  EXPECT_EQ(mixed.tissues[0].intersecting_pairs, -1);  // ... and an unchecked tissue beside checked ones
+  EXPECT_GT(mixed.tissues[1].intersecting_pairs + mixed.tissues[2].intersecting_pairs, 0);
 }
