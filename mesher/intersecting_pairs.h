@@ -1,5 +1,5 @@
 // Intersecting triangle pairs of a whole multi-material surface, found through a uniform grid of
-// triangle boxes on two threads: the fast path of check_surface (mesher/surface_checks.h) for a
+// triangle boxes (mesher/box_grid.h) on two threads: the fast path of check_surface (mesher/surface_checks.h) for a
 // large surface, the extraction's ~400K triangles, where CGAL's self_intersections per tissue
 // boundary tests every triangle once per tissue it bounds (twice for an interface).
 //

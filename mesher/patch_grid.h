@@ -1,5 +1,5 @@
 // PatchGrid: closest points on the patches of a triangle surface through one uniform grid of
-// triangle boxes (SurfaceProjection's patch queries, mesher/surface_projection.h).
+// triangle boxes (mesher/box_grid.h; SurfaceProjection's patch queries, mesher/surface_projection.h).
 //
 // The remesher projects ~1.3 million points onto the 21K phantom's 409K extracted triangles, all
 // of them within a few triangle sizes of the surface. A query searches the cells around the point
@@ -10,10 +10,11 @@
 // order: deterministic). Queries are const and may run from several threads.
 #pragma once
 
+#include "mesher/box_grid.h"
+
 #include <Eigen/Core>
 
 #include <array>
-#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -23,7 +24,7 @@ class PatchGrid {
  public:
   /// `triangles` (corner points, mm) with their patch ids in `patch` (0 .. patches - 1; one per
   /// triangle, else std::invalid_argument).
-  PatchGrid(const std::vector<std::array<Eigen::Vector3d, 3>>& triangles, const std::vector<int>& patch);
+  PatchGrid(std::vector<std::array<Eigen::Vector3d, 3>> triangles, std::vector<int> patch);
 
   struct Hit {
     Eigen::Vector3d point = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());  ///< closest point, mm
@@ -34,18 +35,11 @@ class PatchGrid {
   Hit closest(int patch, const Eigen::Vector3d& p) const;
 
  private:
-  Eigen::Array3i cell_of(const Eigen::Vector3d& p) const;
-  std::int64_t index(const Eigen::Array3i& c) const { return (static_cast<std::int64_t>(c[2]) * dims_[1] + c[1]) * dims_[0] + c[0]; }
-
   std::vector<std::array<Eigen::Vector3d, 3>> triangles_;
   std::vector<int> patch_;
   std::vector<Eigen::Vector3d> lo_, hi_;  ///< per triangle: its box
   std::vector<int> patch_triangles_;      ///< per patch: how many triangles it has
-  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
-  double cell_ = 1.0;
-  Eigen::Array3i dims_ = Eigen::Array3i::Ones();
-  std::vector<std::int64_t> start_;  ///< cell c's triangles: list_[start_[c] .. start_[c + 1])
-  std::vector<int> list_;
+  BoxGrid grid_;                          ///< of the triangles' boxes
 };
 
 }  // namespace tissuemesh

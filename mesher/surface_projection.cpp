@@ -15,6 +15,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace tissuemesh {
 namespace {
@@ -79,7 +80,7 @@ SurfaceProjection::SurfaceProjection(const TriSurface& reference)
   // whichever thread builds it). CGAL builds a tree's box hierarchy at its first query; the whole
   // surface's tree, only for distance() (a measurement after the remeshing, not part of it), is
   // built at the first call of distance().
-  run_at_once([&] { t.patches = std::make_unique<PatchGrid>(corners, patches_.patch_of_triangle); },
+  run_at_once([&] { t.patches = std::make_unique<PatchGrid>(std::move(corners), patches_.patch_of_triangle); },
               [&] {
                 for (const std::vector<Segment>& segments : t.curve_segments) {
                   t.curve.push_back(std::make_unique<SegmentTree>(segments.begin(), segments.end()));
