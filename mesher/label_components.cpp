@@ -8,7 +8,12 @@ ComponentMap find_components(const LabelImage& img) {
   const int nx = img.dims[0], ny = img.dims[1], nz = img.dims[2];
   ComponentMap out;
   out.component_of_voxel.assign(img.voxel_count(), -1);
-  std::vector<std::size_t> stack;
+  // The stack holds each voxel's index with its coordinates (no divisions to recover them).
+  struct Voxel {
+    std::size_t index;
+    int i, j, k;
+  };
+  std::vector<Voxel> stack;
   const std::ptrdiff_t sx = 1, sy = nx, sz = static_cast<std::ptrdiff_t>(nx) * ny;
 
   // Scan order gives each component its first voxel as seed; that voxel has no same-component
@@ -27,33 +32,32 @@ ComponentMap find_components(const LabelImage& img) {
         c.box_max = {i, j, k};
         Eigen::Vector3d sum_ijk = Eigen::Vector3d::Zero();
         out.component_of_voxel[start] = comp;
-        stack.assign(1, start);
+        stack.assign(1, {start, i, j, k});
         while (!stack.empty()) {
-          const std::size_t v = stack.back();
+          const Voxel p = stack.back();
           stack.pop_back();
-          const int vi = static_cast<int>(v % nx);
-          const int vj = static_cast<int>((v / nx) % ny);
-          const int vk = static_cast<int>(v / (static_cast<std::size_t>(nx) * ny));
+          const std::size_t v = p.index;
+          const int vi = p.i, vj = p.j, vk = p.k;
           ++c.voxels;
           sum_ijk += Eigen::Vector3d(vi, vj, vk);
           c.box_min = {std::min(c.box_min[0], vi), std::min(c.box_min[1], vj),
                        std::min(c.box_min[2], vk)};
           c.box_max = {std::max(c.box_max[0], vi), std::max(c.box_max[1], vj),
                        std::max(c.box_max[2], vk)};
-          auto visit = [&](bool inside, std::ptrdiff_t step) {
+          auto visit = [&](bool inside, std::ptrdiff_t step, int wi, int wj, int wk) {
             if (!inside) return;
             const std::size_t w = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(v) + step);
             if (img.labels[w] == id && out.component_of_voxel[w] < 0) {
               out.component_of_voxel[w] = comp;
-              stack.push_back(w);
+              stack.push_back({w, wi, wj, wk});
             }
           };
-          visit(vi > 0, -sx);
-          visit(vi + 1 < nx, sx);
-          visit(vj > 0, -sy);
-          visit(vj + 1 < ny, sy);
-          visit(vk > 0, -sz);
-          visit(vk + 1 < nz, sz);
+          visit(vi > 0, -sx, vi - 1, vj, vk);
+          visit(vi + 1 < nx, sx, vi + 1, vj, vk);
+          visit(vj > 0, -sy, vi, vj - 1, vk);
+          visit(vj + 1 < ny, sy, vi, vj + 1, vk);
+          visit(vk > 0, -sz, vi, vj, vk - 1);
+          visit(vk + 1 < nz, sz, vi, vj, vk + 1);
         }
         c.centroid_mm = img.to_physical(sum_ijk / static_cast<double>(c.voxels));
         out.components.push_back(c);
