@@ -158,13 +158,12 @@ std::vector<std::array<int, 2>> RemeshComplex::edges() const {
     }
   };
   std::vector<std::array<int, 2>> out, second;
+  out.reserve(3 * tri_.size() / 2 + 16);  // a closed surface has 3/2 edges per triangle
   if (tri_.size() < kParallelEdgesFrom) {
-    out.reserve(3 * tri_.size() / 2 + 16);  // a closed surface has 3/2 edges per triangle
     list(0, tri_.size(), out);
     return out;
   }
   const std::size_t half = tri_.size() / 2;
-  out.reserve(3 * tri_.size() / 2 + 16);
   second.reserve(3 * half / 2 + 16);
   run_at_once([&] { list(0, half, out); }, [&] { list(half, tri_.size(), second); }, threads_);
   out.insert(out.end(), second.begin(), second.end());
