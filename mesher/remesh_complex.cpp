@@ -531,7 +531,7 @@ bool RemeshComplex::try_flip(int a, int b) {
   const Vector3d &pa = x_[a], &pb = x_[b], &pc = x_[c], &pd = x_[d];
   // Delaunay: flip when the opposite angles sum beyond pi, i.e. the new diagonal gives the
   // larger smallest angle.
-  if (triangle_angles(pa, pb, pc)[2] + triangle_angles(pb, pa, pd)[2] <= M_PI + 1e-9) return false;
+  if (angle_at_c(pa, pb, pc) + angle_at_c(pb, pa, pd) <= M_PI + 1e-9) return false;
   if (std::min(min_angle(pa, pd, pc), min_angle(pd, pb, pc)) <= std::min(min_angle(pa, pb, pc), min_angle(pb, pa, pd)))
     return false;
   const Vector3d n1 = area_vector(pa, pb, pc).normalized(), n2 = area_vector(pb, pa, pd).normalized();

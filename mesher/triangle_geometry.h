@@ -16,7 +16,11 @@ Eigen::Vector3d area_vector(const Eigen::Vector3d& a, const Eigen::Vector3d& b, 
 /// for every shape; all zero for a zero-area triangle.
 std::array<double, 3> triangle_angles(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
-/// Smallest interior angle (radians).
+/// Interior angle (radians) at c, computed as triangle_angles(a, b, c)[2] is (the same value).
+double angle_at_c(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+/// Smallest interior angle (radians): the angle of triangle_angles' formula at the vertex whose two
+/// edges have the largest dot product; 0 for a zero-area triangle.
 double min_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 /// Frey-Borouchaki quality Q = 6/sqrt(3) A / (p h_max) (A area, p half-perimeter, h_max longest
