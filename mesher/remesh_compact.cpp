@@ -21,6 +21,7 @@ void RemeshComplex::compact() {
   for (std::size_t t = 0; t < tri_.size(); ++t)
     if (tri_alive_[t]) triangle_index[t] = nt++;
   if (nv == static_cast<int>(x_.size()) && nt == static_cast<int>(tri_.size())) return;
+  const bool rings_tracked = ring_changed_.size() == x_.size();  // collapse_short(repeat) reads them next
   for (std::size_t v = 0; v < x_.size(); ++v) {
     const int n = vertex_index[v];
     if (n < 0) continue;
@@ -30,6 +31,7 @@ void RemeshComplex::compact() {
       owner_[n] = owner_[v];
       represents_[n] = std::move(represents_[v]);
       vt_[n] = std::move(vt_[v]);
+      if (rings_tracked) ring_changed_[n] = ring_changed_[v];
     }
     for (int& t : vt_[n]) t = triangle_index[t];
   }
@@ -38,6 +40,7 @@ void RemeshComplex::compact() {
   owner_.resize(nv);
   represents_.resize(nv);
   vt_.resize(nv);
+  if (rings_tracked) ring_changed_.resize(nv);
   vertex_alive_.assign(nv, 1);
   for (std::size_t t = 0; t < tri_.size(); ++t) {
     const int n = triangle_index[t];

@@ -456,8 +456,14 @@ bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
     }
   }
   collect_moved(vt_[a], ts, a, x_[b], b);
-  if (would_intersect(vt_[a])) return false;
+  if (would_intersect(vt_[a])) {
+    if (tracking_rings_) ring_changed_[a] = ring_changed_[b] = 1;  // the obstacle may go: try again
+    return false;
+  }
   // Apply.
+  if (tracking_rings_)
+    for (int t : vt_[a])  // (ts among them)
+      for (int w : tri_[t]) ring_changed_[w] = 1;
   for (int t : ts) {
     tri_alive_[t] = 0;
     grid_.remove(t);

@@ -93,7 +93,14 @@ class RemeshComplex {
   // threads at once, then in index order those of the band between the halves. Their results do
   // not depend on the number of threads.
   std::size_t split_long();
-  std::size_t collapse_short();
+  /// `repeat`: the complex is as the previous collapse_short() left it (compact() in between is
+  /// fine). Then an edge is not tried again when neither of its vertices had its ring changed
+  /// (by a collapse, or an intersection guard refusing one of its collapses) since the start of
+  /// the previous sweep: every test of a collapse but the intersection guard reads only the two
+  /// rings and what stays fixed during the sweeps (sizes, bound, reference), so the previous
+  /// sweep's refusal stands, and the result is the one of trying it. At 21K the sweeps after the
+  /// first of a round re-tried ~19K short edges that stay each time (bench/RESULTS.md).
+  std::size_t collapse_short(bool repeat = false);
   std::size_t flip_all();
   void relax();
 
@@ -335,6 +342,13 @@ class RemeshComplex {
   int band_slab_ = 0;
   int threads_ = 2;
   bool halves_running_ = false;  ///< inside a partitioned sweep's halves: collapses are counted in scratch()
+  /// collapse_short(repeat): per vertex, whether its ring changed or a guard refused one of its
+  /// collapses in this collapse sweep so far (`ring_changed_`) and in the previous one
+  /// (`ring_changed_before_`); marked by try_collapse while `tracking_rings_`. A partitioned
+  /// sweep's half marks only vertices on its side (those of the triangles it changes).
+  std::vector<char> ring_changed_, ring_changed_before_;
+  bool tracking_rings_ = false;
+  bool ring_changed(int v) const { return ring_changed_before_[v] || ring_changed_[v]; }
   std::vector<Vector3d> x_;
   std::vector<Kind> kind_;
   std::vector<int> owner_;  ///< patch (surface vertex), curve (curve vertex), -1 (corner)

@@ -116,11 +116,19 @@ std::size_t RemeshComplex::partitioned_sweep(const std::vector<Item>& items, Sid
   return n;
 }
 
-std::size_t RemeshComplex::collapse_short() {
+std::size_t RemeshComplex::collapse_short(bool repeat) {
   rebuild_grid();
-  return partitioned_sweep(
+  if (repeat && ring_changed_.size() == x_.size())
+    ring_changed_before_.swap(ring_changed_);
+  else
+    ring_changed_before_.assign(x_.size(), 1);
+  ring_changed_.assign(x_.size(), 0);
+  tracking_rings_ = true;
+  const std::size_t n = partitioned_sweep(
       edges(), [this](const std::array<int, 2>& e) { return side_[e[0]] == side_[e[1]] ? side_[e[0]] : -1; },
       [this](const std::array<int, 2>& e, int side) { return collapse_edge(e[0], e[1], side); });
+  tracking_rings_ = false;
+  return n;
 }
 
 void RemeshComplex::relax() {

@@ -86,6 +86,8 @@ int RemeshComplex::collapse_edge(int a, int b, int side) {
   if (side >= 0 && (kind_[a] != Kind::Surface && kind_[b] != Kind::Surface)) return -1;
   if (!edge_exists(a, b) || !in_focus(0.5 * (x_[a] + x_[b]))) return 0;
   if (side >= 0 && !(vertex_on_side(a, side) && vertex_on_side(b, side))) return -1;
+  // Here, when the try would come (not earlier: the band may still change the rings before).
+  if (tracking_rings_ && !ring_changed(a) && !ring_changed(b)) return 0;  // collapse_short(repeat)
   return relative_length(a, b) < kCollapseBelow && collapse_either(a, b, kSplitAbove);
 }
 

@@ -65,7 +65,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   // after each sweep; then split, flip, relax.
   auto round = [](RemeshComplex& c, bool grade) {
     for (int k = 0; k < 20; ++k) {
-      const std::size_t collapsed = c.collapse_short();
+      const std::size_t collapsed = c.collapse_short(k > 0);
       c.compact();
       if (collapsed == 0) break;
     }

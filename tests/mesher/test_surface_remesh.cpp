@@ -1,7 +1,6 @@
 // Controlled-resolution remeshing of the multi-material surface (issue #5, step 2): budget,
 // closedness, shared interfaces, junction preservation, distance to the input, determinism.
 #include "core/errors.h"
-#include "mesher/phantom.h"
 #include "mesher/remesh_complex.h"
 #include "mesher/surface_checks.h"
 #include "mesher/surface_distance.h"
@@ -9,6 +8,7 @@
 #include "mesher/surface_quality.h"
 #include "mesher/surface_remesh.h"
 #include "mesher/triangle_geometry.h"
+#include "support/coarse_phantom.h"
 #include "support/surface_images.h"
 #include "support/tolerances.h"
 
@@ -54,31 +54,6 @@ AngleStats remeshed_angles(const TriSurface& input, const SurfaceProjection& on,
     a.under_30 += angle < 30.0;
   }
   return a;
-}
-
-/// The default phantom on 1.4 x 1.4 x 3 mm voxels (no FGT islands: none fit in the fat at this
-/// spacing; the thorax label 6 outside, as in configs/phantom.yaml), extracted once: small enough
-/// to remesh in about a second, and unlike the small test images its polished surfaces keep
-/// triangles under the paper's Q_min.
-struct CoarsePhantom {
-  TriSurface surface;
-  SurfaceProjection on_surface;
-  double max_deviation_mm;
-  explicit CoarsePhantom(const LabelImage& img)
-      : surface(extract(img, 5).surface), on_surface(surface), max_deviation_mm(0.5 * img.spacing.norm()) {}
-};
-
-const CoarsePhantom& coarse_phantom() {
-  static const CoarsePhantom phantom([] {
-    PhantomParams coarse;
-    coarse.spacing_mm = {1.4, 1.4, 3.0};
-    coarse.fgt_islands = 0;
-    LabelImage img = make_breast_phantom(coarse);
-    for (auto& label : img.labels)
-      if (label == 6) label = 0;
-    return img;
-  }());
-  return phantom;
 }
 
 /// island_under_layer() coarsened by collapse sweeps alone at L = 3 voxels: a complex with
