@@ -17,6 +17,7 @@
 #include "core/label_image.h"
 
 #include <cstddef>
+#include <vector>
 
 namespace tissuemesh {
 
@@ -26,7 +27,12 @@ struct IslandAbsorption {
 };
 
 /// Relabels the islands of `ids` (tissue ids, 0 = outside) with fewer than `min_voxels` voxels;
-/// min_voxels <= 1 changes nothing.
-IslandAbsorption absorb_small_islands(LabelImage& ids, std::size_t min_voxels);
+/// min_voxels <= 1 changes nothing. `changed_since`, when given, lists every voxel whose id changed
+/// since `ids` last had no island (e.g. since the last absorption, with the same min_voxels): then
+/// only the components at those voxels and their face neighbours are searched for islands (a
+/// bounded search each), and the whole image is labelled only when one is found. The result is
+/// the one without the hint; wrong hints give wrong results.
+IslandAbsorption absorb_small_islands(LabelImage& ids, std::size_t min_voxels,
+                                      const std::vector<std::size_t>* changed_since = nullptr);
 
 }  // namespace tissuemesh

@@ -196,15 +196,21 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
     auto stage = progress.stage("absorb islands under " + std::to_string(params.min_island_voxels) +
                                 " voxels, repair non-manifold voxel configurations");
     const auto min_voxels = static_cast<std::size_t>(params.min_island_voxels);
+    std::vector<std::size_t> repaired;  // the voxels the last repair relabelled
     for (int round = 0; round < kIslandRounds; ++round) {
-      const IslandAbsorption islands = absorb_small_islands(work, min_voxels);
+      // After a repair, islands can only be where it relabelled (absorb_small_islands' hint).
+      const IslandAbsorption islands = absorb_small_islands(work, min_voxels, round > 0 ? &repaired : nullptr);
       out.islands.islands += islands.islands;
       out.islands.voxels += islands.voxels;
       if (round > 0 && islands.islands == 0) break;
+      const std::vector<std::int32_t> before = work.labels;
       const LabelRepairResult repair = make_well_composed(work);
       out.repair.relabelled_voxels += repair.relabelled_voxels;
       out.repair.passes += repair.passes;
       if (repair.relabelled_voxels == 0) break;
+      repaired.clear();
+      for (std::size_t v = 0; v < before.size(); ++v)
+        if (before[v] != work.labels[v]) repaired.push_back(v);
     }
     stage.note(std::to_string(out.islands.islands) + " islands (" + std::to_string(out.islands.voxels) +
                " voxels) absorbed, " + std::to_string(out.repair.relabelled_voxels) + " voxels relabelled in " +

@@ -120,3 +120,34 @@ TEST(SmallIslands, AnIslandWhoseSmallShellTookItsIdStaysTissue) {
   absorb_small_islands(img, 30);
   for (std::size_t v = 0; v < img.labels.size(); ++v) EXPECT_EQ(img.labels[v], 2) << "voxel " << v;
 }
+
+TEST(SmallIslands, AHintedAbsorptionFindsWhatAFullOneFinds) {
+  // Tissue 1 in tissue 2: a 4 x 4 x 4 block with a one-voxel-thick filament of 5 voxels along x.
+  // No islands under 4 voxels to start with.
+  LabelImage img = block_of(2, 14);
+  fill(img, 1, 1, 5, 1, 5, 1, 5);
+  fill(img, 1, 5, 10, 3, 4, 3, 4);
+  LabelImage clean = img;
+  ASSERT_EQ(absorb_small_islands(clean, 4).islands, 0u);
+  // A repair-like change raises the filament's third voxel to 2, the tissue around: the
+  // filament's last two voxels become a two-voxel island of tissue 1 that contains no changed
+  // voxel (only its face neighbour changed), so the hint's neighbours must find it.
+  const std::size_t cut = img.index(7, 3, 3);
+  img.labels[cut] = 2;
+  LabelImage full = img, hinted = img;
+  const std::vector<std::size_t> changed{cut};
+  const IslandAbsorption a = absorb_small_islands(full, 4), b = absorb_small_islands(hinted, 4, &changed);
+  EXPECT_EQ(a.islands, 1u);
+  EXPECT_EQ(b.islands, a.islands);
+  EXPECT_EQ(b.voxels, a.voxels);
+  EXPECT_EQ(hinted.labels, full.labels);
+  EXPECT_EQ(hinted.at(8, 3, 3), 2);  // the cut-off end took its surroundings
+  // A change that leaves no island: nothing found, nothing changed, as without the hint.
+  LabelImage quiet = clean;
+  const std::size_t corner = quiet.index(1, 1, 1);
+  quiet.labels[corner] = 2;  // the block's corner voxel joins the surrounding tissue
+  const LabelImage quiet_before = quiet;
+  const std::vector<std::size_t> corner_changed{corner};
+  EXPECT_EQ(absorb_small_islands(quiet, 4, &corner_changed).islands, 0u);
+  EXPECT_EQ(quiet.labels, quiet_before.labels);
+}
