@@ -76,6 +76,18 @@ struct Block {
   }
 };
 
+/// Whether the block of lattice point (I, J, K) lies inside the image and holds one label: what
+/// Block::load then uniform() would find, without the bounds checks (most blocks of an image are
+/// inside one tissue; the first pass visits every block).
+bool uniform_inside(const LabelImage& img, int I, int J, int K) {
+  if (I < 1 || J < 1 || K < 1 || I >= img.dims[0] || J >= img.dims[1] || K >= img.dims[2]) return false;
+  const std::size_t sy = static_cast<std::size_t>(img.dims[0]), sz = sy * static_cast<std::size_t>(img.dims[1]);
+  const std::int32_t* p = img.labels.data() + img.index(I - 1, J - 1, K - 1);
+  const std::int32_t l = p[0];
+  return p[1] == l && p[sy] == l && p[sy + 1] == l && p[sz] == l && p[sz + 1] == l && p[sz + sy] == l &&
+         p[sz + sy + 1] == l;
+}
+
 /// Lattice points whose block may hold a defect: all at first, then those with a voxel changed
 /// since their block was last found sound. A block not marked is as it was when found sound, so a
 /// pass that skips it does what a full pass would do there (nothing).
@@ -229,7 +241,7 @@ LabelRepairResult make_well_composed(LabelImage& ids, int max_passes) {
     for (int K = 0; K <= d[2]; ++K)
       for (int J = 0; J <= d[1]; ++J)
         for (int I = 0; I <= d[0]; ++I) {
-          if (!dirty.take(I, J, K)) continue;
+          if (!dirty.take(I, J, K) || uniform_inside(ids, I, J, K)) continue;
           block.load(ids, I, J, K);
           if (block.uniform()) continue;
           int mask = 0;
