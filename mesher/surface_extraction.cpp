@@ -153,6 +153,15 @@ void relax(std::vector<Eigen::Vector3d>& x, const std::vector<std::array<int, 3>
            const std::vector<VertexKind>& kind, const std::vector<char>& pinned, const std::vector<std::vector<int>>& surface_adj,
            const std::vector<std::vector<int>>& curve_adj, int iterations) {
   std::vector<Eigen::Vector3d> next = x;
+  // Each vertex's neighbours (curve or surface ones, as it moves) in one flat list, in their order:
+  // the 2 x iterations sweeps read them without a pointer per vertex (the same sums).
+  std::vector<std::size_t> first(x.size() + 1, 0);
+  std::vector<int> adjacent;
+  for (std::size_t v = 0; v < x.size(); ++v) {
+    const auto& n = kind[v] == VertexKind::Curve ? curve_adj[v] : surface_adj[v];
+    if (!pinned[v]) adjacent.insert(adjacent.end(), n.begin(), n.end());
+    first[v + 1] = adjacent.size();
+  }
   for (int it = 0; it < 2 * iterations; ++it) {
     const double factor = it % 2 == 0 ? kLambda : kMu;
     // Each vertex's new position depends only on the old positions: the vertices split over two
@@ -162,10 +171,9 @@ void relax(std::vector<Eigen::Vector3d>& x, const std::vector<std::array<int, 3>
     for (std::int64_t i = 0; i < count; ++i) {
       const auto v = static_cast<std::size_t>(i);
       if (pinned[v]) continue;
-      const auto& n = kind[v] == VertexKind::Curve ? curve_adj[v] : surface_adj[v];
       Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-      for (int w : n) mean += x[static_cast<std::size_t>(w)];
-      mean /= static_cast<double>(n.size());
+      for (std::size_t e = first[v]; e < first[v + 1]; ++e) mean += x[static_cast<std::size_t>(adjacent[e])];
+      mean /= static_cast<double>(first[v + 1] - first[v]);
       Eigen::Vector3d p = x[v] + factor * (mean - x[v]);
       for (int a = 0; a < 3; ++a) p[a] = std::clamp(p[a], lattice[v][a] - 1.0, static_cast<double>(lattice[v][a]));
       next[v] = p;
