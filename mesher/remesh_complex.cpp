@@ -510,12 +510,13 @@ bool RemeshComplex::collapse_either(int a, int b, double max_relative) {
   return try_collapse(a, b, max_relative);
 }
 
-bool RemeshComplex::try_flip(int a, int b) {
+bool RemeshComplex::flip_passes_local_tests(int a, int b, FlipQuad& quad) const {
+  quad.c = quad.d = -1;
   if (curve_of_edge(a, b) >= 0) return false;
-  std::vector<int> ts;
+  thread_local std::vector<int> ts;  // per thread (flip_all tests on two), kept allocated
   edge_triangles(a, b, ts);
   if (ts.size() != 2 || patch_[ts[0]] != patch_[ts[1]]) return false;
-  int t1 = ts[0], t2 = ts[1];
+  const int t1 = ts[0], t2 = ts[1];
   // Orient: t1 holds the directed edge a -> b.
   auto directed = [&](int t, int p, int q) {
     for (int i = 0; i < 3; ++i)
@@ -530,6 +531,7 @@ bool RemeshComplex::try_flip(int a, int b) {
     return -1;
   };
   const int c = third(t1, a, b), d = third(t2, a, b);
+  quad = {a, b, c, d, t1, t2};
   if (c == d || edge_exists(c, d)) return false;
   // A flip takes a triangle from a and from b; neither may be left with three (such a vertex
   // bounds its triangles' smallest angle by half that of the triangle around them).
@@ -544,9 +546,16 @@ bool RemeshComplex::try_flip(int a, int b) {
   const Vector3d m1 = area_vector(pa, pd, pc).normalized(), m2 = area_vector(pd, pb, pc).normalized();
   if (m1.dot(m2) < std::min(n1.dot(n2), kFlipFlatCos)) return false;
   const Vector3d mean = (n1 + n2).normalized();
-  if (m1.dot(mean) < kMinNormalTurnCos || m2.dot(mean) < kMinNormalTurnCos) return false;
+  return m1.dot(mean) >= kMinNormalTurnCos && m2.dot(mean) >= kMinNormalTurnCos;
+}
+
+bool RemeshComplex::try_flip(int a_, int b_, FlipQuad* flipped) {
+  FlipQuad q;
+  if (!flip_passes_local_tests(a_, b_, q)) return false;
+  const int a = q.a, b = q.b, c = q.c, d = q.d, t1 = q.t1, t2 = q.t2;
+  const Vector3d &pa = x_[a], &pb = x_[b], &pc = x_[c], &pd = x_[d];
   scratch().created = {{{a, d, c}, {pa, pd, pc}}, {{d, b, c}, {pd, pb, pc}}};
-  if (would_intersect(ts)) return false;
+  if (would_intersect({t1, t2})) return false;
   tri_[t1] = {a, d, c};
   tri_[t2] = {d, b, c};
   index_triangle(t1);
@@ -556,6 +565,7 @@ bool RemeshComplex::try_flip(int a, int b) {
   vt_[d].push_back(t1);
   vt_[c].push_back(t2);
   ++flips;
+  if (flipped) *flipped = q;
   return true;
 }
 

@@ -101,7 +101,10 @@ class RemeshComplex {
   /// sweep's refusal stands, and the result is the one of trying it. At 21K the sweeps after the
   /// first of a round re-tried ~19K short edges that stay each time (bench/RESULTS.md).
   std::size_t collapse_short(bool repeat = false);
-  std::size_t flip_all();
+  /// flip_all first runs the local tests of every edge's flip on two threads and then, in index
+  /// order, tries only the edges they did not refuse or whose neighbourhood a flip has changed
+  /// since; `skip_refused` false tries every edge (the sweep it must equal, for the tests).
+  std::size_t flip_all(bool skip_refused = true);
   void relax();
 
   /// Angle-improving smoothing of the vertices of triangles with an angle under `min_angle_rad`
@@ -303,7 +306,18 @@ class RemeshComplex {
   /// Removes the lower-ranked vertex of (a, b) (surface before curve, then the higher index), or
   /// the other when that is refused.
   bool collapse_either(int a, int b, double max_relative);
-  bool try_flip(int a, int b);
+  /// A flip of edge (a, b): t1 holds the directed edge a -> b, t2 the edge b -> a, c and d are
+  /// their third vertices (-1 until known).
+  struct FlipQuad {
+    int a = -1, b = -1, c = -1, d = -1, t1 = -1, t2 = -1;
+  };
+  /// try_flip's tests but the intersection guard: they read only the edge's two triangles, the
+  /// triangle lists of a, b and c, and the four points. False when they refuse the flip; `quad` is
+  /// filled as far as the tests got (c and d once found).
+  bool flip_passes_local_tests(int a, int b, FlipQuad& quad) const;
+  /// Flips edge (a, b) when flip_passes_local_tests and the intersection guard allow it; the
+  /// flipped quad in `flipped` (old diagonal a, b; new c, d).
+  bool try_flip(int a, int b, FlipQuad* flipped = nullptr);
 
   const SurfaceProjection& proj_;
   std::function<double(const Vector3d&)> size_;
