@@ -80,6 +80,7 @@ class RemeshComplex {
   double L = 1.0;  ///< edge length where s = 1, mm
   std::size_t splits = 0, collapses = 0, flips = 0;
   std::size_t partitioned_sweeps = 0;  ///< sweeps run as two halves
+  std::size_t skipped_collapse_tries = 0;  ///< edges collapse_until_stable's later sweeps did not try again
 
   std::size_t vertices() const { return alive_vertices_; }
   /// Live vertices that never move or go (junction corners, pinches).
@@ -93,14 +94,17 @@ class RemeshComplex {
   // threads at once, then in index order those of the band between the halves. Their results do
   // not depend on the number of threads.
   std::size_t split_long();
-  /// `repeat`: the complex is as the previous collapse_short() left it (compact() in between is
-  /// fine). Then an edge is not tried again when neither of its vertices had its ring changed
-  /// (by a collapse, or an intersection guard refusing one of its collapses) since the start of
-  /// the previous sweep: every test of a collapse but the intersection guard reads only the two
-  /// rings and what stays fixed during the sweeps (sizes, bound, reference), so the previous
-  /// sweep's refusal stands, and the result is the one of trying it. At 21K the sweeps after the
-  /// first of a round re-tried ~19K short edges that stay each time (bench/RESULTS.md).
-  std::size_t collapse_short(bool repeat = false);
+  std::size_t collapse_short() { return collapse_sweep(false); }
+  /// collapse_short() and compact() until a sweep collapses nothing, at most `max_sweeps` sweeps;
+  /// returns the collapses. A sweep after the first does not try an edge again when neither of its
+  /// vertices had its ring changed (by a collapse, or an intersection guard refusing one of its
+  /// collapses) since the previous sweep began: every test of a collapse but the intersection
+  /// guard reads only the two rings and what stays fixed between these sweeps (sizes, bound,
+  /// reference, kinds), besides the junction edge counts, which only fall (a refusal for a short
+  /// junction stands). So that sweep's refusal stands, and the result is the one of trying every
+  /// edge again. At 21K the later sweeps of a round re-tried ~19K short edges that stay
+  /// (bench/RESULTS.md, 2026-11-27 ~21:01-22:22 UTC).
+  std::size_t collapse_until_stable(int max_sweeps);
   /// flip_all first runs the local tests of every edge's flip on two threads and then, in index
   /// order, tries only the edges they did not refuse or whose neighbourhood a flip has changed
   /// since; `skip_refused` false tries every edge (the sweep it must equal, for the tests).
@@ -342,6 +346,7 @@ class RemeshComplex {
     unsigned stamp = 0;
     std::vector<int> candidates;
     std::size_t collapsed = 0;  ///< collapses of a partitioned sweep's half, not yet counted
+    std::size_t skipped = 0;    ///< edges a repeated collapse sweep did not try, not yet counted
   };
   std::array<Scratch, 2> scratch_;
   Scratch& scratch();
@@ -356,8 +361,11 @@ class RemeshComplex {
   int band_slab_ = 0;
   int threads_ = 2;
   bool halves_running_ = false;  ///< inside a partitioned sweep's halves: collapses are counted in scratch()
-  /// collapse_short(repeat): per vertex, whether its ring changed or a guard refused one of its
-  /// collapses in this collapse sweep so far (`ring_changed_`) and in the previous one
+  /// A collapse sweep; `repeat`: collapse_until_stable's sweep after its first (header comment
+  /// there), which skips the edges whose ends' rings did not change.
+  std::size_t collapse_sweep(bool repeat);
+  /// Collapse sweeps: per vertex, whether its ring changed or a guard refused one of its
+  /// collapses in this sweep so far (`ring_changed_`) and in the previous one
   /// (`ring_changed_before_`); marked by try_collapse while `tracking_rings_`. A partitioned
   /// sweep's half marks only vertices on its side (those of the triangles it changes).
   std::vector<char> ring_changed_, ring_changed_before_;

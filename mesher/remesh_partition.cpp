@@ -116,18 +116,35 @@ std::size_t RemeshComplex::partitioned_sweep(const std::vector<Item>& items, Sid
   return n;
 }
 
-std::size_t RemeshComplex::collapse_short(bool repeat) {
+std::size_t RemeshComplex::collapse_sweep(bool repeat) {
   rebuild_grid();
   if (repeat && ring_changed_.size() == x_.size())
     ring_changed_before_.swap(ring_changed_);
   else
     ring_changed_before_.assign(x_.size(), 1);
   ring_changed_.assign(x_.size(), 0);
-  tracking_rings_ = true;
+  for (Scratch& sc : scratch_) sc.skipped = 0;
+  // Marks only during the sweep: other operations (splits) grow the vertex arrays past them.
+  struct Tracking {
+    bool& on;
+    explicit Tracking(bool& flag) : on(flag) { on = true; }
+    ~Tracking() { on = false; }
+  } tracking(tracking_rings_);
   const std::size_t n = partitioned_sweep(
       edges(), [this](const std::array<int, 2>& e) { return side_[e[0]] == side_[e[1]] ? side_[e[0]] : -1; },
       [this](const std::array<int, 2>& e, int side) { return collapse_edge(e[0], e[1], side); });
-  tracking_rings_ = false;
+  for (const Scratch& sc : scratch_) skipped_collapse_tries += sc.skipped;
+  return n;
+}
+
+std::size_t RemeshComplex::collapse_until_stable(int max_sweeps) {
+  std::size_t n = 0;
+  for (int k = 0; k < max_sweeps; ++k) {
+    const std::size_t collapsed = collapse_sweep(k > 0);
+    compact();
+    n += collapsed;
+    if (collapsed == 0) break;
+  }
   return n;
 }
 

@@ -91,7 +91,10 @@ int RemeshComplex::collapse_edge(int a, int b, int side) {
   if (!edge_exists(a, b) || !in_focus(0.5 * (x_[a] + x_[b]))) return 0;
   if (side >= 0 && !(vertex_on_side(a, side) && vertex_on_side(b, side))) return -1;
   // Here, when the try would come (not earlier: the band may still change the rings before).
-  if (tracking_rings_ && !ring_changed(a) && !ring_changed(b)) return 0;  // collapse_short(repeat)
+  if (tracking_rings_ && !ring_changed(a) && !ring_changed(b)) {  // collapse_until_stable
+    ++scratch().skipped;
+    return 0;
+  }
   return relative_length(a, b) < kCollapseBelow && collapse_either(a, b, kSplitAbove);
 }
 

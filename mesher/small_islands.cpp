@@ -3,6 +3,7 @@
 #include "mesher/label_components.h"
 
 #include <map>
+#include <stdexcept>
 #include <unordered_set>
 #include <vector>
 
@@ -103,7 +104,10 @@ IslandAbsorption absorb_small_islands(LabelImage& ids, std::size_t min_voxels, c
   std::vector<std::size_t> seeds;
   if (changed_since) {
     seeds = *changed_since;
-    for (const std::size_t v : *changed_since) face_neighbours(ids, v, seeds);
+    for (const std::size_t v : *changed_since) {
+      if (v >= ids.labels.size()) throw std::invalid_argument("absorb_small_islands: changed voxel outside the image");
+      face_neighbours(ids, v, seeds);
+    }
   }
   // An island inside another island takes that island's id and becomes part of it only for this
   // pass's component list; the next pass sees it as what it is now. Each pass that changes
@@ -111,12 +115,16 @@ IslandAbsorption absorb_small_islands(LabelImage& ids, std::size_t min_voxels, c
   // A pass after one that changed something looks for islands only among the components of the
   // voxels it relabelled (whole islands: the components they left lost no voxels otherwise), and
   // labels the whole image only when it finds one there; the outcome is the same.
-  for (int pass = 0; pass < kMaxPasses; ++pass) {
-    if ((pass > 0 || changed_since) && !small_component_at(ids, seeds, min_voxels)) break;
+  out.complete = false;
+  for (int pass = 0; pass < kMaxPasses && !out.complete; ++pass) {
+    if ((pass > 0 || changed_since) && !small_component_at(ids, seeds, min_voxels)) {
+      out.complete = true;
+      break;
+    }
     seeds.clear();
     const std::size_t n = absorb_once(ids, min_voxels, seeds);
-    if (n == 0) break;
     out.islands += n;
+    out.complete = n == 0;
   }
   for (std::size_t v = 0; v < before.size(); ++v) out.voxels += before[v] != ids.labels[v];
   return out;

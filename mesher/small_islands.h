@@ -24,11 +24,13 @@ namespace tissuemesh {
 struct IslandAbsorption {
   std::size_t islands = 0;  ///< components relabelled (over all passes)
   std::size_t voxels = 0;   ///< voxels whose id changed
+  bool complete = true;     ///< no island left (false: the pass cap ended it, a pathological labeling)
 };
 
 /// Relabels the islands of `ids` (tissue ids, 0 = outside) with fewer than `min_voxels` voxels;
 /// min_voxels <= 1 changes nothing. `changed_since`, when given, lists every voxel whose id changed
-/// since `ids` last had no island (e.g. since the last absorption, with the same min_voxels): then
+/// since `ids` last had no island (e.g. since the last absorption with the same min_voxels that was
+/// `complete`); every entry must be a voxel index of `ids` (else std::invalid_argument). Then
 /// only the components at those voxels and their face neighbours are searched for islands (a
 /// bounded search each), and the whole image is labelled only when one is found. The result is
 /// the one without the hint; wrong hints give wrong results.

@@ -205,9 +205,12 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
                                 " voxels, repair non-manifold voxel configurations");
     const auto min_voxels = static_cast<std::size_t>(params.min_island_voxels);
     std::vector<std::size_t> repaired;  // the voxels the last repair relabelled
+    bool no_islands_before_repair = false;
     for (int round = 0; round < kIslandRounds; ++round) {
       // After a repair, islands can only be where it relabelled (absorb_small_islands' hint).
-      const IslandAbsorption islands = absorb_small_islands(work, min_voxels, round > 0 ? &repaired : nullptr);
+      const IslandAbsorption islands =
+          absorb_small_islands(work, min_voxels, no_islands_before_repair ? &repaired : nullptr);
+      no_islands_before_repair = islands.complete;
       out.islands.islands += islands.islands;
       out.islands.voxels += islands.voxels;
       if (round > 0 && islands.islands == 0) break;

@@ -64,11 +64,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   // factor; at 21K, 183,803 of the 203,882 vertices go), dropping the dead vertices and triangles
   // after each sweep; then split, flip, relax.
   auto round = [](RemeshComplex& c, bool grade) {
-    for (int k = 0; k < 20; ++k) {
-      const std::size_t collapsed = c.collapse_short(k > 0);
-      c.compact();
-      if (collapsed == 0) break;
-    }
+    c.collapse_until_stable(20);
     if (grade) c.grade_stuck_edges(kStuckBelow);
     c.split_long();
     c.flip_all();

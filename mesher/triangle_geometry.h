@@ -20,7 +20,9 @@ std::array<double, 3> triangle_angles(const Eigen::Vector3d& a, const Eigen::Vec
 double angle_at_c(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 /// Smallest interior angle (radians): the angle of triangle_angles' formula at the vertex whose two
-/// edges have the largest dot product; 0 for a zero-area triangle.
+/// edges have the largest dot product; 0 for a zero-area triangle. The smallest of triangle_angles
+/// exactly when atan2 never grows with its second argument; glibc's may break that by an ulp at
+/// near-ties (tests/mesher/test_triangle_geometry.cpp compares the two within that).
 double min_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 /// Frey-Borouchaki quality Q = 6/sqrt(3) A / (p h_max) (A area, p half-perimeter, h_max longest

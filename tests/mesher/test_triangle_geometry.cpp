@@ -25,7 +25,7 @@ TEST(TriangleGeometry, OneAngleShortcutsMatchAllThreeAngles) {
     const auto angles = triangle_angles(a, b, c);
     EXPECT_EQ(angle_at_c(a, b, c), angles[2]);  // the same formula, so the same double
     // atan2 falls as its second argument grows; one ulp of atan2's error apart at most.
-    EXPECT_NEAR(min_angle(a, b, c), *std::min_element(angles.begin(), angles.end()), kAngleDeg * M_PI / 180.0);
+    EXPECT_NEAR(min_angle(a, b, c), *std::min_element(angles.begin(), angles.end()), kAtan2Rad);
   }
   const Vector3d p(1.0, 2.0, 3.0);
   EXPECT_EQ(min_angle(p, p, Vector3d(4.0, 5.0, 6.0)), 0.0);  // zero area

@@ -17,6 +17,11 @@ constexpr double kRelativeRoundoff = 1e-9;
 /// only double round-off separates the two; 1e-9 degrees.
 constexpr double kAngleDeg = 1e-9;
 
+/// One angle (radians, up to pi) from atan2 by two routes that differ only in which of its
+/// arguments' candidates is picked (mesher/triangle_geometry.h min_angle): glibc's atan2 is within
+/// an ulp (~4e-16 at pi), so 1e-15 rad.
+constexpr double kAtan2Rad = 1e-15;
+
 /// Mesh volume of a smooth tissue against its voxel volume after CGAL meshing of a small
 /// generated image: the surface sits between voxel staircase and the smoothed boundary, so a few
 /// percent is the discretisation error at the coarse test sizes. The acceptance bound on the
