@@ -21,7 +21,7 @@ void RemeshComplex::compact() {
   for (std::size_t t = 0; t < tri_.size(); ++t)
     if (tri_alive_[t]) triangle_index[t] = nt++;
   if (nv == static_cast<int>(x_.size()) && nt == static_cast<int>(tri_.size())) return;
-  const bool rings_tracked = ring_changed_.size() == x_.size();  // collapse_short(repeat) reads them next
+  const bool rings_tracked = ring_changed_.size() == x_.size();  // collapse_until_stable reads them next
   for (std::size_t v = 0; v < x_.size(); ++v) {
     const int n = vertex_index[v];
     if (n < 0) continue;
