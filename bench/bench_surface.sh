@@ -5,17 +5,22 @@
 # 2026-11-25 the projection's construction, ~0.2 s at 21K, was in no stage and not counted) and of the volume meshing (CGAL Mesh_3 from the surface: pieces, protection,
 # refinement, optimisation, extraction), from each run's report.json timings, and of the whole command's
 # wall time (which also includes reading, quality and Hausdorff measurements and writing). Targets:
-# extraction + remeshing under 5 s (#5); extraction + remeshing + volume under 10 s at 21K (#6). Usage: bench/bench_surface.sh [runs] (after scripts/build.sh). Prints a
-# Markdown table for bench/RESULTS.md. Needs python3.
+# extraction + remeshing under 5 s (#5); extraction + remeshing + volume under 10 s at 21K (#6).
+# Before each run the fixed machine reference (bench/machine_reference.cpp, ~1 s on the machine of
+# 2026-11-28) runs once; the table gives its median and extraction + remeshing as a ratio to it
+# (the ratio of the medians), which compares runs on machines of different speed. Usage:
+# bench/bench_surface.sh [runs] (after scripts/build.sh). Prints a Markdown table for
+# bench/RESULTS.md. Needs python3.
 set -euo pipefail
 RUNS=${1:-5}
 source "$(dirname "$0")/common.sh"
 
-echo "| config | vertices | tets | extraction median [s] | remeshing median [s] | extraction + remeshing median [s] (min-max) | volume median [s] | extraction + remeshing + volume median [s] | whole command median [s] | peak memory median [MiB] |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| config | vertices | tets | extraction median [s] | remeshing median [s] | extraction + remeshing median [s] (min-max) | volume median [s] | extraction + remeshing + volume median [s] | whole command median [s] | peak memory median [MiB] | machine reference median [s] | extraction + remeshing / reference |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for cfg in configs/paper-21k.yaml configs/paper-2k.yaml; do
-  : > "$WORK/ext"; : > "$WORK/rem"; : > "$WORK/sum"; : > "$WORK/vol"; : > "$WORK/all"; : > "$WORK/wall"; : > "$WORK/mem"
+  : > "$WORK/ext"; : > "$WORK/rem"; : > "$WORK/sum"; : > "$WORK/vol"; : > "$WORK/all"; : > "$WORK/wall"; : > "$WORK/mem"; : > "$WORK/ref"
   for i in $(seq "$RUNS"); do
+    reference_timed "$WORK/ref"
     mesh_timed "$cfg" "$WORK/wall"
     python3 - "$WORK" <<'PY'
 import json, sys
@@ -34,8 +39,9 @@ open(w + "/vertices", "w").write(str(r["result"]["vertices"]))
 open(w + "/tets", "w").write(str(r["result"]["volume_mesh"]["tets"]))
 PY
   done
-  printf "| %s | %s | %s | %.2f | %.2f | %.2f (%.2f-%.2f) | %.2f | %.2f | %.2f | %.0f |\n" "$cfg" "$(cat "$WORK/vertices")" \
+  printf "| %s | %s | %s | %.2f | %.2f | %.2f (%.2f-%.2f) | %.2f | %.2f | %.2f | %.0f | %.3f | %.2f |\n" "$cfg" "$(cat "$WORK/vertices")" \
     "$(cat "$WORK/tets")" "$(median < "$WORK/ext")" "$(median < "$WORK/rem")" "$(median < "$WORK/sum")" \
     "$(sort -g "$WORK/sum" | head -1)" "$(sort -g "$WORK/sum" | tail -1)" "$(median < "$WORK/vol")" \
-    "$(median < "$WORK/all")" "$(median < "$WORK/wall")" "$(median < "$WORK/mem")"
+    "$(median < "$WORK/all")" "$(median < "$WORK/wall")" "$(median < "$WORK/mem")" "$(median < "$WORK/ref")" \
+    "$(awk -v s="$(median < "$WORK/sum")" -v r="$(median < "$WORK/ref")" 'BEGIN {print s / r}')"
 done

@@ -1,8 +1,9 @@
 # Shared set-up of the bench/*.sh scripts (sourced, not run): the repository root as the working
 # directory, the built executable, a work directory removed on exit with the default phantom in it,
-# median() (of numbers on stdin, one per line) and mesh_timed().
+# median() (of numbers on stdin, one per line), mesh_timed() and reference_timed().
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 EXE=./build/app/tissuemesh
+REFERENCE=./build/bench/machine_reference
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 $EXE phantom --out "$WORK/phantom.nii.gz" > /dev/null
@@ -18,4 +19,11 @@ mesh_timed() {
   $EXE mesh "$WORK/phantom.nii.gz" -c "$1" -o "$WORK/out" > /dev/null
   end=$(date +%s.%N)
   awk -v a="$start" -v b="$end" "BEGIN {print b - a}" >> "$2"
+}
+
+# reference_timed TIMES: appends to the file TIMES the seconds of one run of the fixed machine
+# reference (bench/machine_reference.cpp: a TetGen Delaunay tetrahedralisation, independent of
+# tissuemesh's code), for times given as ratios to a reference measured in the same run.
+reference_timed() {
+  $REFERENCE >> "$1"
 }
