@@ -2,7 +2,7 @@
 
 #include "core/errors.h"
 #include "core/resources.h"
-#include "mesher/direct_mesher.h"
+#include "volume/direct_mesher.h"
 
 #include <cstdio>
 #include <fstream>

@@ -9,8 +9,8 @@
 #include "app/solve_outputs.h"
 #include "core/errors.h"
 #include "core/output_dir.h"
-#include "mesher/image_io.h"
-#include "mesher/phantom.h"
+#include "image/image_io.h"
+#include "image/phantom.h"
 
 #include <cstdio>
 #include <iostream>

@@ -3,8 +3,8 @@
 #include "app/commands.h"
 #include "core/errors.h"
 #include "core/vtu_io.h"
-#include "mesher/image_io.h"
-#include "mesher/mesh_report.h"
+#include "image/image_io.h"
+#include "pipeline/mesh_report.h"
 
 #include <iostream>
 #include <memory>

@@ -5,7 +5,7 @@
 #include "app/mesh_outputs.h"
 #include "core/errors.h"
 #include "core/output_dir.h"
-#include "mesher/image_io.h"
+#include "image/image_io.h"
 
 #include <filesystem>
 #include <iostream>

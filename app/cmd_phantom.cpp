@@ -4,9 +4,9 @@
 #include "app/job_config.h"
 #include "core/errors.h"
 #include "core/output_dir.h"
-#include "mesher/image_io.h"
-#include "mesher/mesh_report.h"
-#include "mesher/phantom.h"
+#include "image/image_io.h"
+#include "pipeline/mesh_report.h"
+#include "image/phantom.h"
 
 #include <filesystem>
 #include <fstream>

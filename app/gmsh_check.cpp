@@ -3,7 +3,7 @@
 #include "app/check_outputs.h"
 #include "app/cli_support.h"
 #include "fe_export/gmsh/gmsh_quality.h"
-#include "mesher/mesh_quality.h"
+#include "quality/mesh_quality.h"
 
 #include <algorithm>
 #include <cmath>

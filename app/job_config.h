@@ -1,4 +1,4 @@
-// JobConfig: one config file for the whole pipeline — meshing (mesher/mesh_config.h), materials
+// JobConfig: one config file for the whole pipeline — meshing (pipeline/mesh_config.h), materials
 // (materials/material_config.h), the model (core/model_settings.h) and export options
 // (fe_export/export_options.h). Each command reads the parts it needs; unknown keys anywhere are
 // errors. A file without meshing keys (no `tissues`) is a valid export/solve/check config; of the
@@ -8,7 +8,7 @@
 #include "core/model_settings.h"
 #include "fe_export/export_options.h"
 #include "materials/material_config.h"
-#include "mesher/mesh_config.h"
+#include "pipeline/mesh_config.h"
 
 #include <string>
 

@@ -4,9 +4,9 @@
 #include "core/errors.h"
 #include "core/surface_vtp.h"
 #include "core/vtu_io.h"
-#include "mesher/mesh_job.h"
-#include "mesher/mesh_report.h"
-#include "mesher/surface_job.h"
+#include "pipeline/mesh_job.h"
+#include "pipeline/mesh_report.h"
+#include "pipeline/surface_job.h"
 
 #include <fstream>
 #include <iostream>

@@ -5,7 +5,7 @@
 #include "core/output_dir.h"
 #include "core/progress.h"
 #include "core/tet_mesh.h"
-#include "mesher/mesh_config.h"
+#include "pipeline/mesh_config.h"
 
 #include <nlohmann/json.hpp>
 

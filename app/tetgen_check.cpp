@@ -5,12 +5,12 @@
 #include "app/export_outputs.h"
 #include "core/errors.h"
 #include "core/vtu_io.h"
-#include "mesher/conformity.h"
-#include "mesher/forced_radius_edge.h"
-#include "mesher/mesh_interfaces.h"
-#include "mesher/mesh_quality.h"
-#include "mesher/node_spacing.h"
-#include "mesher/tetgen_mesher.h"
+#include "quality/conformity.h"
+#include "volume/forced_radius_edge.h"
+#include "quality/mesh_interfaces.h"
+#include "quality/mesh_quality.h"
+#include "quality/node_spacing.h"
+#include "volume/tetgen_mesher.h"
 #include "solver_check/tissue_motion.h"
 
 #include <Eigen/Geometry>
@@ -110,7 +110,7 @@ std::string surface_nodes_text(const RadiusEdgeAccount& a) {
   return text;
 }
 
-// The stdout lines of the forced ratio (mesher/forced_radius_edge.h).
+// The stdout lines of the forced ratio (volume/forced_radius_edge.h).
 std::string forced_text(const ForcedRadiusEdge& f, const TriSurface& s, const TetMesh& mesh, const std::string& bound) {
   if (f.triangle < 0) return "";
   const Eigen::Vector3d c = centroid(s, f.triangle);

@@ -2,11 +2,11 @@
 // meshes compared. Used by `check --tetgen`.
 //
 // The multi-material surface of MESH (every boundary and interface face once, with its two
-// regions; mesher/mesh_interfaces.h) goes to the TetGen backend (mesher/tetgen_mesher.h, the
+// regions; quality/mesh_interfaces.h) goes to the TetGen backend (volume/tetgen_mesher.h, the
 // config's `tetgen:` keys) with the input faces kept, so both meshes bound the same tissues with
 // the same triangles. Compared per tissue: volumes, tets, nodes, dihedral statistics; per
 // interface: areas; the radius-edge ratio against the configured bound and against the bound the
-// input triangles force on both meshes (mesher/forced_radius_edge.h); then the model of each mesh (the config's materials, node and face sets,
+// input triangles force on both meshes (volume/forced_radius_edge.h); then the model of each mesh (the config's materials, node and face sets,
 // gravity) is solved with the built-in solver and the volume-mean displacement of the target
 // tissue (the tumor) compared.
 #pragma once

@@ -4,8 +4,8 @@
 // labels to tissues with a config given as YAML text, meshes it with the direct pipeline and
 // prints what a user checks first: counts, per-tissue volume against the voxel volume, the
 // smallest dihedral angle and conformity. Exit code 0 when the mesh is conforming.
-#include "mesher/mesh_job.h"
-#include "mesher/mesh_report.h"
+#include "pipeline/mesh_job.h"
+#include "pipeline/mesh_report.h"
 
 #include <iostream>
 

@@ -1,5 +1,5 @@
 // Element quality of a tet mesh as the Gmsh SDK computes it: an independent check of our own
-// shape measures (mesher/mesh_quality.h) by the code many users judge meshes with.
+// shape measures (quality/mesh_quality.h) by the code many users judge meshes with.
 //
 // The mesh goes to Gmsh as one discrete volume (nodes and linear tets in mesh order), and Gmsh
 // writes its mesh statistics as a post-processing view (options Print.PostSICN and

@@ -6,7 +6,7 @@
 // with their exit codes and nothing written.
 #include "cli/cli_runner.h"
 #include "core/vtu_io.h"
-#include "mesher/mesh_quality.h"
+#include "quality/mesh_quality.h"
 #include "solver_check/calculix_run.h"
 #include "support/model_fixture.h"
 #include "support/test_paths.h"

@@ -1,6 +1,6 @@
 // Black-box tests of the tissuemesh program: the commands a user types and what they leave.
 #include "cli/cli_runner.h"
-#include "mesher/image_io.h"
+#include "image/image_io.h"
 #include "support/test_helpers.h"
 #include "support/test_paths.h"
 

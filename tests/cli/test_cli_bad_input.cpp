@@ -1,6 +1,6 @@
 // Bad input through the program: exit code 2, a message naming the culprit, no partial output.
 #include "cli/cli_runner.h"
-#include "mesher/image_io.h"
+#include "image/image_io.h"
 #include "support/test_paths.h"
 
 #include <gtest/gtest.h>

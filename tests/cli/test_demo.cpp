@@ -5,7 +5,7 @@
 // ~75 s); CI runs them.
 #include "cli/cli_runner.h"
 #include "core/vtu_io.h"
-#include "mesher/conformity.h"
+#include "quality/conformity.h"
 #include "solver_check/calculix_run.h"
 #include "support/test_paths.h"
 #include "support/tolerances.h"

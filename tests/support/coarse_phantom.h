@@ -1,10 +1,10 @@
 // The default phantom on coarse voxels, extracted once per test binary: a complex large enough for
-// the remesher's partitioned sweeps (more than 10,000 vertices, mesher/remesh_partition.cpp) and
+// the remesher's partitioned sweeps (more than 10,000 vertices, surface/remesh_partition.cpp) and
 // small enough to remesh in about a second. Shared by the remesher's tests.
 #pragma once
 
-#include "mesher/phantom.h"
-#include "mesher/surface_projection.h"
+#include "image/phantom.h"
+#include "surface/surface_projection.h"
 #include "support/surface_images.h"
 
 namespace tissuemesh::test {

@@ -3,9 +3,9 @@
 #pragma once
 
 #include "core/tet_mesh.h"
-#include "mesher/conformity.h"
-#include "mesher/surface_projection.h"
-#include "mesher/surface_remesh.h"
+#include "quality/conformity.h"
+#include "surface/surface_projection.h"
+#include "surface/surface_remesh.h"
 #include "support/surface_images.h"
 
 #include <set>

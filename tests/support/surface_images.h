@@ -5,7 +5,7 @@
 
 #include "core/label_image.h"
 #include "core/progress.h"
-#include "mesher/surface_extraction.h"
+#include "surface/surface_extraction.h"
 
 #include <array>
 #include <functional>
@@ -66,7 +66,7 @@ inline LabelImage island_under_layer() {
 }
 
 /// The test images are built voxel by voxel, some with one-voxel features on purpose: islands are
-/// kept unless `min_island_voxels` says otherwise (mesher/small_islands.h).
+/// kept unless `min_island_voxels` says otherwise (image/small_islands.h).
 inline SurfaceExtraction extract(const LabelImage& img, int n_tissues, int iterations = 10, int min_island_voxels = 1) {
   std::vector<std::string> names;
   for (int i = 1; i <= n_tissues; ++i) names.push_back("t" + std::to_string(i));

@@ -1,9 +1,9 @@
-// Field-by-field comparison of two surface check reports (mesher/surface_checks.h), shared by the
+// Field-by-field comparison of two surface check reports (surface/surface_checks.h), shared by the
 // tests of the re-check after moved points and of the extraction's unfolding, which must report
 // exactly what a full check of the same surface finds.
 #pragma once
 
-#include "mesher/surface_checks.h"
+#include "surface/surface_checks.h"
 
 #include <gtest/gtest.h>
 

@@ -18,7 +18,7 @@ constexpr double kRelativeRoundoff = 1e-9;
 constexpr double kAngleDeg = 1e-9;
 
 /// One angle (radians, up to pi) from atan2 by two routes that differ only in which of its
-/// arguments' candidates is picked (mesher/triangle_geometry.h min_angle): glibc's atan2 is within
+/// arguments' candidates is picked (surface/triangle_geometry.h min_angle): glibc's atan2 is within
 /// an ulp (~4e-16 at pi), so 1e-15 rad.
 constexpr double kAtan2Rad = 1e-15;
 
@@ -33,7 +33,7 @@ constexpr double kSmallImageVolumeRel = 0.05;
 /// round-off remains; 1e-6 relative.
 constexpr double kFlatInterfaceVolumeRel = 1e-6;
 
-/// Enclosed volume of an extracted multi-material surface (mesher/surface_extraction.h) against
+/// Enclosed volume of an extracted multi-material surface (surface/surface_extraction.h) against
 /// the voxel volume on the small test images: the surface stays in the half-voxel band around the
 /// voxel boundary and Taubin relaxation does not shrink it; measured 0.4-1.9 % (worst: a 5-voxel
 /// sphere). Plain Laplacian relaxation (no inflating mu step) exceeds 5 %, so 5 % still catches
@@ -213,15 +213,15 @@ constexpr double kLockingFreeRel = 0.15;
 constexpr double kGradedLoopMinAngleDeg = 15.0;
 
 /// Smallest angle of the whole remeshed island_under_layer() at budget 300: measured 21.74
-/// degrees with the pattern search of the angle smoothing (mesher/remesh_sweeps.cpp), 18.27
+/// degrees with the pattern search of the angle smoothing (surface/remesh_sweeps.cpp), 18.27
 /// without it; 20 separates the two. (23.06 since the smoothing repeats until nothing moves.)
 constexpr double kPolishedMinAngleDeg = 20.0;
 /// Smallest angle of the remeshed island_under_layer() at budget 400: measured 23.06 degrees
-/// with the angle smoothing repeated until a pass moves nothing (mesher/surface_remesh.cpp), 19.85
+/// with the angle smoothing repeated until a pass moves nothing (surface/surface_remesh.cpp), 19.85
 /// with three passes; 21.5 separates the two.
 constexpr double kRepeatedPolishMinAngleDeg = 21.5;
 /// Smallest angle of the remeshed island_under_layer() at budget 200: measured 26.11 degrees when
-/// the angle smoothing may hand input vertices to a neighbour (mesher/remesh_complex.h
+/// the angle smoothing may hand input vertices to a neighbour (surface/remesh_complex.h
 /// keeps_represented), 18.38 when it may not; 22 separates the two.
 constexpr double kHandoffMinAngleDeg = 22.0;
 

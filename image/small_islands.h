@@ -1,0 +1,40 @@
+// Absorption of sub-resolution islands before surface extraction (issue #5; it serves #6).
+//
+// Why: a tissue component of a few voxels (segmentation noise, e.g. one fat voxel inside glandular
+// tissue) becomes a closed surface of its own. The remesher cannot collapse a closed component
+// below a tetrahedron, so it survives as a pocket with 0.25 mm edges inside a mesh of 3.5 mm
+// edges, and every tet around it is badly shaped: on the default phantom such pockets set the
+// worst radius-edge ratios of both volume meshers. Nothing that small is resolved by the mesh.
+//
+// Rule: every 6-connected component of a tissue (image/label_components.h) with fewer than
+// `min_voxels` voxels takes the region most of its face neighbours belong to (ties: the lowest id;
+// the image border counts as outside, 0). Components are visited in find_components' order and
+// relabelled in place; passes repeat (at most 10) until none is left, so an island inside another
+// small island ends with the region around both. Cavities of outside (id 0) are not touched.
+// Deterministic.
+#pragma once
+
+#include "core/label_image.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace tissuemesh {
+
+struct IslandAbsorption {
+  std::size_t islands = 0;  ///< components relabelled (over all passes)
+  std::size_t voxels = 0;   ///< voxels whose id changed
+  bool complete = true;     ///< no island left (false: the pass cap ended it, a pathological labeling)
+};
+
+/// Relabels the islands of `ids` (tissue ids, 0 = outside) with fewer than `min_voxels` voxels;
+/// min_voxels <= 1 changes nothing. `changed_since`, when given, lists every voxel whose id changed
+/// since `ids` last had no island (e.g. since the last absorption with the same min_voxels that was
+/// `complete`); every entry must be a voxel index of `ids` (else std::invalid_argument). Then
+/// only the components at those voxels and their face neighbours are searched for islands (a
+/// bounded search each), and the whole image is labelled only when one is found. The result is
+/// the one without the hint; wrong hints give wrong results.
+IslandAbsorption absorb_small_islands(LabelImage& ids, std::size_t min_voxels,
+                                      const std::vector<std::size_t>* changed_since = nullptr);
+
+}  // namespace tissuemesh

@@ -1,0 +1,30 @@
+#include "pipeline/mesh_job.h"
+
+namespace tissuemesh {
+
+LabelImage tissue_id_image(const LabelImage& labels, const std::string& image_name, const TissueTable& tissues,
+                           std::map<int, double>& voxel_volume_mm3, Progress& progress) {
+  auto stage = progress.stage("check labels");
+  const auto counts = labels.label_counts();
+  tissues.check_against(counts, image_name);
+  for (const auto& [label, n] : counts) {
+    const int id = tissues.tissue_of_label(label);
+    if (id > 0) voxel_volume_mm3[id] += static_cast<double>(n) * labels.voxel_volume();
+  }
+  return tissues.to_tissue_ids(labels);
+}
+
+MeshJobResult run_mesh_job(const LabelImage& labels, const std::string& image_name,
+                           const MeshConfig& config, Progress& progress) {
+  MeshJobResult r;
+  const LabelImage ids = tissue_id_image(labels, image_name, config.tissues, r.voxel_volume_mm3, progress);
+  r.meshing = mesh_labels_direct(ids, config.tissues.names(), config.direct, progress);
+  {
+    auto stage = progress.stage("quality and conformity");
+    r.quality = compute_quality(r.meshing.mesh, r.voxel_volume_mm3);
+    r.conformity = check_conformity(r.meshing.mesh);
+  }
+  return r;
+}
+
+}  // namespace tissuemesh

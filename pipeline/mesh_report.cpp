@@ -1,0 +1,389 @@
+#include "pipeline/mesh_report.h"
+
+#include "quality/conformity.h"
+#include "quality/mesh_quality.h"
+
+#include <cstdio>
+#include <optional>
+#include <sstream>
+
+namespace tissuemesh {
+
+namespace {
+
+nlohmann::json vec(const Eigen::Vector3d& v) { return {v[0], v[1], v[2]}; }
+
+std::string fmt(const char* format, double a, double b = 0, double c = 0) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, format, a, b, c);
+  return buf;
+}
+
+}  // namespace
+
+nlohmann::json image_summary_json(const LabelImage& image) {
+  nlohmann::json j;
+  j["dims"] = image.dims;
+  j["spacing_mm"] = vec(image.spacing);
+  j["origin_mm"] = vec(image.origin);
+  j["direction_columns"] = {vec(image.direction.col(0)), vec(image.direction.col(1)), vec(image.direction.col(2))};
+  j["orientation"] = orientation_code(image.direction);
+  j["coordinate_system"] = "LPS";
+  j["voxel_volume_mm3"] = image.voxel_volume();
+  nlohmann::json labels = nlohmann::json::array();
+  for (const auto& [label, n] : image.label_counts())
+    labels.push_back({{"label", label}, {"voxels", n}, {"volume_mm3", n * image.voxel_volume()}});
+  j["labels"] = labels;
+  return j;
+}
+
+std::string image_summary_text(const LabelImage& image) {
+  std::ostringstream s;
+  s << "label image: " << image.dims[0] << " x " << image.dims[1] << " x " << image.dims[2] << " voxels, spacing "
+    << fmt("%.4g x %.4g x %.4g mm", image.spacing[0], image.spacing[1], image.spacing[2]) << "\n";
+  s << "  orientation " << orientation_code(image.direction) << " (axes i,j,k point to these patient sides; "
+    << "coordinates LPS mm)\n";
+  s << "  origin (centre of voxel 0,0,0): " << fmt("(%.3f, %.3f, %.3f) mm", image.origin[0], image.origin[1], image.origin[2])
+    << "\n";
+  for (int c = 0; c < 3; ++c)
+    s << "  axis " << "ijk"[c] << " direction: "
+      << fmt("(%.5f, %.5f, %.5f)", image.direction(0, c), image.direction(1, c), image.direction(2, c)) << "\n";
+  s << "  label      voxels    volume [mm^3]\n";
+  for (const auto& [label, n] : image.label_counts())
+    s << fmt("  %5.0f", label) << fmt(" %11.0f", static_cast<double>(n)) << fmt(" %16.1f\n", n * image.voxel_volume());
+  return s.str();
+}
+
+nlohmann::json mesh_summary_json(const TetMesh& mesh) {
+  nlohmann::json j;
+  j["nodes"] = mesh.points.size();
+  j["tets"] = mesh.tets.size();
+  j["tissues"] = mesh.tissue_names;
+  j["quality"] = to_json(compute_quality(mesh));
+  j["conformity"] = to_json(check_conformity(mesh));
+  return j;
+}
+
+std::string mesh_summary_text(const TetMesh& mesh) {
+  std::ostringstream s;
+  s << "tet mesh: " << mesh.points.size() << " nodes, " << mesh.tets.size() << " tets, " << mesh.num_tissues()
+    << " tissues (coordinates LPS mm)\n\n";
+  s << format_quality_table(compute_quality(mesh)) << "\n";
+  s << format_conformity_table(check_conformity(mesh), mesh.tissue_names);
+  return s.str();
+}
+
+namespace {
+
+void add_sliver_repair_json(nlohmann::json& j, const SliverRepair& repair) {
+  const BoundarySliverRemoval& b = repair.boundary_slivers;
+  const SliverFlipResult& f = repair.sliver_flips;
+  j["boundary_slivers_removed"] = {{"tets", b.tets_removed}, {"volume_mm3", b.volume_removed_mm3}};
+  j["sliver_flips"] = {{"flips_2_3", f.flips_23},
+                       {"edge_removals", f.edge_removals},
+                       {"passes", f.passes},
+                       {"interface_flips", f.interface_flips},
+                       {"volume_moved_between_tissues_mm3", f.volume_relabelled_mm3}};
+  j["sliver_smoothing"] = {{"vertex_moves", repair.sliver_smoothing.moved_vertices},
+                           {"vertex_moves_on_curved_surface", repair.sliver_smoothing.moved_on_surface},
+                           {"passes", repair.sliver_smoothing.passes}};
+}
+
+std::string sliver_repair_text(const SliverRepair& repair) {
+  const BoundarySliverRemoval& b = repair.boundary_slivers;
+  const SliverFlipResult& f = repair.sliver_flips;
+  std::ostringstream s;
+  s << "boundary slivers removed: " << b.tets_removed << " tets, " << fmt("%.4f mm^3\n", b.volume_removed_mm3);
+  s << "sliver flips: " << f.flips_23 << " 2-3 flips, " << f.edge_removals << " edge removals (" << f.interface_flips
+    << " across interfaces, " << fmt("%.4f mm^3 moved", f.volume_relabelled_mm3) << ") in " << f.passes << " passes\n";
+  const SliverSmoothingResult& m = repair.sliver_smoothing;
+  s << "sliver smoothing: " << m.moved_vertices
+    << " vertex moves (inside a tissue or within a flat or nearly flat boundary or interface";
+  if (m.moved_on_surface > 0) s << "; " << m.moved_on_surface << " of them over a curved one, on the input surface";
+  s << ") in " << m.passes << " passes\n";
+  return s.str();
+}
+
+}  // namespace
+
+nlohmann::json mesh_job_json(const MeshJobResult& r) {
+  nlohmann::json j;
+  const TetMesh& mesh = r.meshing.mesh;
+  j["nodes"] = mesh.points.size();
+  j["tets"] = mesh.tets.size();
+  j["tissues"] = mesh.tissue_names;
+  j["quality"] = to_json(r.quality);
+  j["conformity"] = to_json(r.conformity);
+  j["conforming"] = r.conformity.conforming();
+  nlohmann::json missed = nlohmann::json::array();
+  for (const auto& m : r.meshing.missed)
+    missed.push_back({{"tissue", m.tissue}, {"voxels", m.voxels}, {"volume_mm3", m.volume_mm3},
+                      {"centroid_mm", vec(m.centroid_mm)}});
+  j["warnings"] = r.meshing.warnings;
+  j["image_components"] = r.meshing.image_components;
+  j["initial_surface_points"] = r.meshing.initial_points;
+  j["components_not_meshed"] = missed;
+  add_sliver_repair_json(j, r.meshing.repair);
+  return j;
+}
+
+std::string mesh_job_text(const MeshJobResult& r) {
+  std::ostringstream s;
+  const TetMesh& mesh = r.meshing.mesh;
+  s << "mesh: " << mesh.points.size() << " nodes, " << mesh.tets.size() << " tets\n\n";
+  s << format_quality_table(r.quality) << "\n";
+  s << format_conformity_table(r.conformity, mesh.tissue_names) << "\n";
+  s << "image components (6-connected, all tissues): " << r.meshing.image_components << "; not meshed: "
+    << r.meshing.missed.size() << "\n";
+  s << sliver_repair_text(r.meshing.repair);
+  for (const auto& w : r.meshing.warnings) s << "WARNING: " << w << "\n";
+  for (const auto& m : r.meshing.missed)
+    s << "  " << m.tissue << ": " << m.voxels << " voxels, " << fmt("%.2f mm^3 at (%.1f, ", m.volume_mm3, m.centroid_mm[0])
+      << fmt("%.1f, %.1f) mm LPS\n", m.centroid_mm[1], m.centroid_mm[2]);
+  return s.str();
+}
+
+namespace {
+double voxel_volume_of(const TissueSurfaceCheck& t, const std::map<int, double>& voxel_volume_mm3) {
+  const auto it = voxel_volume_mm3.find(t.tissue_id);
+  return it == voxel_volume_mm3.end() ? 0.0 : it->second;
+}
+
+double volume_error_percent(const TissueSurfaceCheck& t, const std::map<int, double>& voxel_volume_mm3) {
+  const double voxel = voxel_volume_of(t, voxel_volume_mm3);
+  return voxel > 0.0 ? 100.0 * (t.volume_mm3 - voxel) / voxel : 0.0;
+}
+}  // namespace
+
+namespace {
+
+nlohmann::json table1_json(const SurfaceQuality& q) {
+  return {{"average_min_angle_deg", q.average_min_angle_deg}, {"min_angle_deg", q.min_angle_deg},
+          {"p30_percent", q.p30_percent},  {"q_average", q.q_average},
+          {"q_min", q.q_min},                 {"mean_edge_mm", q.mean_edge_mm}};
+}
+
+std::string table1_row(const char* name, const SurfaceQuality& q) {
+  char label[40];
+  std::snprintf(label, sizeof label, "  %-26s", name);
+  return label + fmt("  %19.3f  %15.3f", q.average_min_angle_deg, q.min_angle_deg) +
+         fmt("  %7.4f  %6.4f  %6.4f", q.p30_percent, q.q_average, q.q_min) + fmt("  %14.3f\n", q.mean_edge_mm);
+}
+
+// The paper's Table 2: vertices and cells of each tissue after each step (1 extracted surface,
+// 2 remeshed surface, 3 tet mesh), plus a row for the whole complex. A surface vertex on an
+// interface counts in both tissues, as in the paper; the whole-complex row counts it once.
+struct StepCounts {
+  std::size_t vertices = 0, cells = 0;
+};
+struct StepsRow {
+  std::string tissue;
+  StepCounts extracted;
+  std::optional<StepCounts> remeshed, volume;
+};
+
+std::vector<StepsRow> steps_table(const SurfaceJobResult& r) {
+  std::vector<StepsRow> rows;
+  const auto& extracted = r.extraction.checks.tissues;
+  for (std::size_t t = 0; t < extracted.size(); ++t) {
+    StepsRow row;
+    row.tissue = extracted[t].name;
+    row.extracted = {extracted[t].vertices, extracted[t].triangles};
+    if (r.remesh) row.remeshed = StepCounts{r.remesh->checks.tissues[t].vertices, r.remesh->checks.tissues[t].triangles};
+    if (r.volume) row.volume = StepCounts{r.volume->quality.tissues[t].vertices, r.volume->quality.tissues[t].tets};
+    rows.push_back(row);
+  }
+  StepsRow all;
+  all.tissue = "all tissues";
+  all.extracted = {r.extraction.surface.points.size(), r.extraction.surface.triangles.size()};
+  if (r.remesh) all.remeshed = StepCounts{r.remesh->surface.points.size(), r.remesh->surface.triangles.size()};
+  if (r.volume) all.volume = StepCounts{r.volume->meshing.mesh.points.size(), r.volume->meshing.mesh.tets.size()};
+  rows.push_back(all);
+  return rows;
+}
+
+nlohmann::json table2_json(const std::vector<StepsRow>& rows) {
+  auto counts = [](const std::optional<StepCounts>& c, const char* cells) {
+    return c ? nlohmann::json{{"vertices", c->vertices}, {cells, c->cells}} : nlohmann::json(nullptr);
+  };
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& row : rows)
+    j.push_back({{"tissue", row.tissue},
+                 {"extracted_surface", counts(row.extracted, "triangles")},
+                 {"remeshed_surface", counts(row.remeshed, "triangles")},
+                 {"tet_mesh", counts(row.volume, "tets")}});
+  return j;
+}
+
+std::string table2_text(const std::vector<StepsRow>& rows) {
+  std::ostringstream o;
+  o << "Table 2 (vertices and cells after each step)\n"
+    << "                    1 extracted surface    2 remeshed surface         3 tet mesh\n"
+    << "  tissue             vertices  triangles    vertices  triangles    vertices       tets\n";
+  auto pair = [](const std::optional<StepCounts>& c) {
+    char cell[64];
+    if (c)
+      std::snprintf(cell, sizeof cell, "  %10zu %10zu", c->vertices, c->cells);
+    else
+      std::snprintf(cell, sizeof cell, "  %10s %10s", "-", "-");
+    return std::string(cell);
+  };
+  for (const auto& row : rows) {
+    char name[64];
+    std::snprintf(name, sizeof name, "  %-16s", row.tissue.c_str());
+    o << name << pair(row.extracted) << pair(row.remeshed) << pair(row.volume) << "\n";
+  }
+  o << "  (a vertex on an interface counts in each tissue it bounds; the last row counts it once)\n";
+  return o.str();
+}
+
+}  // namespace
+
+nlohmann::json surface_job_json(const SurfaceJobResult& r) {
+  const TriSurface& s = r.surface();
+  const TriSurface& e = r.extraction.surface;
+  nlohmann::json j;
+  j["vertices"] = s.points.size();
+  j["triangles"] = s.triangles.size();
+  j["junction_polylines"] = s.junctions.size();
+  j["extracted"] = {{"vertices", e.points.size()},
+                    {"triangles", e.triangles.size()},
+                    {"junction_curve_vertices", r.extraction.curve_vertices},
+                    {"junction_corner_vertices", r.extraction.corner_vertices},
+                    {"unfolded_vertex_moves", r.extraction.unfolded_vertices},
+                    {"islands_absorbed",
+                     {{"islands", r.extraction.islands.islands}, {"voxels", r.extraction.islands.voxels}}},
+                    {"voxel_repair",
+                     {{"relabelled_voxels", r.extraction.repair.relabelled_voxels},
+                      {"passes", r.extraction.repair.passes}}},
+                    {"table1_quality", table1_json(r.extracted_quality)}};
+  if (r.remesh) {
+    j["remesh"] = {{"edge_length_mm", r.remesh->edge_length_mm},
+                   {"splits", r.remesh->splits},
+                   {"collapses", r.remesh->collapses},
+                   {"flips", r.remesh->flips},
+                   {"angle_smoothing_moves", r.remesh->angle_moves},
+                   {"quality_smoothing_moves", r.remesh->quality_moves},
+                   {"sweeps_on_two_threads", r.remesh->partitioned_sweeps}};
+    if (r.hausdorff)
+      j["remesh"]["hausdorff_to_extracted_mm"] = {{"symmetric", r.hausdorff->symmetric_mm()},
+                                                   {"remeshed_to_extracted", r.hausdorff->a_to_b_mm},
+                                                   {"extracted_to_remeshed", r.hausdorff->b_to_a_mm}};
+  }
+  if (r.approach) {
+    const Eigen::Vector3d &e = r.approach->entry(), &c = r.approach->target_centroid();
+    j["approach"] = {{"entry_mm", {e.x(), e.y(), e.z()}},
+                     {"target_centroid_mm", {c.x(), c.y(), c.z()}},
+                     {"target_radius_mm", r.approach->target_radius_mm()}};
+    if (r.grading)
+      j["approach"]["measured"] = {{"inside_mean_edge_mm", r.grading->inside_mean_edge_mm},
+                                   {"outside_mean_edge_mm", r.grading->outside_mean_edge_mm},
+                                   {"inside_edges", r.grading->inside_edges},
+                                   {"outside_edges", r.grading->outside_edges},
+                                   {"inside_over_outside", r.grading->ratio()}};
+  }
+  j["table1_quality"] = table1_json(r.quality);
+  nlohmann::json tissues = nlohmann::json::array();
+  for (const auto& t : r.checks.tissues)
+    tissues.push_back({{"tissue", t.name},
+                       {"vertices", t.vertices},
+                       {"triangles", t.triangles},
+                       {"closed_and_oriented", t.closed_and_oriented()},
+                       {"open_edges", t.open_edges},
+                       {"nonmanifold_edges", t.nonmanifold_edges},
+                       {"misoriented_edges", t.misoriented_edges},
+                       {"nonmanifold_vertices", t.nonmanifold_vertices},
+                       {"intersecting_triangle_pairs", t.intersecting_pairs},
+                       {"enclosed_volume_mm3", t.volume_mm3},
+                       {"voxel_volume_mm3", voxel_volume_of(t, r.voxel_volume_mm3)},
+                       {"volume_error_percent", volume_error_percent(t, r.voxel_volume_mm3)}});
+  j["table2_tissues"] = tissues;
+  j["duplicate_triangles"] = r.checks.duplicate_triangles;
+  j["junction_edges"] = r.checks.junction_edges;
+  j["junction_edges_off_junction"] = r.checks.junction_edges_off_junction;
+  j["valid"] = r.checks.valid();
+  if (r.volume) {
+    const VolumeStage& v = *r.volume;
+    nlohmann::json vj;
+    vj["mesher"] = "CGAL Mesh_3 " + cgal_version() + " from the surface (Polyhedral_complex_mesh_domain_3)";
+    vj["size_field_edge_mm"] = v.size_mm;
+    vj["nodes"] = v.meshing.mesh.points.size();
+    vj["tets"] = v.meshing.mesh.tets.size();
+    vj["patch_pieces"] = v.meshing.pieces;
+    vj["duplicated_piece_vertices"] = v.meshing.duplicated_vertices;
+    vj["initial_points"] = v.meshing.initial_points;
+    vj["quality"] = to_json(v.quality);
+    vj["conformity"] = to_json(v.conformity);
+    vj["conforming"] = v.conformity.conforming();
+    add_sliver_repair_json(vj, v.meshing.repair);
+    vj["warnings"] = v.meshing.warnings;
+    j["volume_mesh"] = vj;
+  }
+  j["table2_steps"] = table2_json(steps_table(r));
+  if (r.volume) j["table3_total_cells"] = r.volume->meshing.mesh.tets.size();
+  return j;
+}
+
+std::string surface_job_text(const SurfaceJobResult& r) {
+  const TriSurface& e = r.extraction.surface;
+  const TriSurface& s = r.surface();
+  std::ostringstream o;
+  o << "extracted surface: " << e.points.size() << " vertices, " << e.triangles.size()
+    << " triangles (each interface once), " << e.junctions.size() << " junction polylines ("
+    << r.extraction.curve_vertices << " curve vertices, " << r.extraction.corner_vertices << " corners); "
+    << r.extraction.islands.islands << " islands (" << r.extraction.islands.voxels
+    << " voxels) given to their surroundings, " << r.extraction.repair.relabelled_voxels
+    << " voxels relabelled to remove non-manifold configurations, "
+    << r.extraction.unfolded_vertices << " vertex moves to undo folds\n";
+  if (r.remesh) {
+    o << "remeshed surface: " << s.points.size() << " vertices, " << s.triangles.size() << " triangles, "
+      << s.junctions.size() << " junction polylines; edge length " << fmt("%.3f", r.remesh->edge_length_mm)
+      << " mm where the size field is 1 (" << r.remesh->splits << " splits, " << r.remesh->collapses
+      << " collapses, " << r.remesh->flips << " flips, " << r.remesh->angle_moves << " angle-smoothing moves";
+    if (r.remesh->quality_moves > 0) o << ", " << r.remesh->quality_moves << " quality-smoothing moves";
+    o << "; " << r.remesh->partitioned_sweeps << " collapse and relaxation sweeps in two halves on two threads)\n";
+    if (r.hausdorff)
+      o << "Hausdorff distance to the extracted surface: " << fmt("%.3f", r.hausdorff->symmetric_mm())
+        << " mm (remeshed -> extracted " << fmt("%.3f", r.hausdorff->a_to_b_mm) << " mm, extracted -> remeshed "
+        << fmt("%.3f", r.hausdorff->b_to_a_mm) << " mm)\n";
+  }
+  if (r.approach && r.grading) {
+    const Eigen::Vector3d &e = r.approach->entry();
+    o << "approach: entry " << fmt("(%.2f, %.2f, %.2f) mm", e.x(), e.y(), e.z()) << ", mean edge "
+      << fmt("%.3f mm inside the corridor and target (%.0f edges), ", r.grading->inside_mean_edge_mm,
+             static_cast<double>(r.grading->inside_edges))
+      << fmt("%.3f mm beyond the falloff (%.0f edges): ratio %.3f\n", r.grading->outside_mean_edge_mm,
+             static_cast<double>(r.grading->outside_edges), r.grading->ratio());
+  }
+  o << "\nTable 1 (triangle quality)    avg min angle [deg]  min angle [deg]  P30 [%]   Q_av    Q_min   mean edge [mm]\n";
+  if (r.remesh) o << table1_row("extracted", r.extracted_quality);
+  o << table1_row(r.remesh ? "remeshed" : "extracted", r.quality) << "\n";
+  o << "surface checks      vertices  triangles  closed+oriented+manifold  intersecting pairs  volume [mm^3]  voxel volume [mm^3]  error [%]\n";
+  for (const auto& t : r.checks.tissues) {
+    char line[256];
+    std::snprintf(line, sizeof line, "  %-16s  %8zu  %9zu  %24s  %18lld  %13.1f  %19.1f  %9.3f\n", t.name.c_str(),
+                  t.vertices, t.triangles, t.closed_and_oriented() && t.nonmanifold_vertices == 0 ? "yes" : "NO",
+                  t.intersecting_pairs, t.volume_mm3,
+                  voxel_volume_of(t, r.voxel_volume_mm3), volume_error_percent(t, r.voxel_volume_mm3));
+    o << line;
+  }
+  o << "\ntriangles stored twice: " << r.checks.duplicate_triangles << "; junction edges: " << r.checks.junction_edges
+    << " (" << r.checks.junction_edges_off_junction << " not where >= 3 triangles meet)\n";
+  o << (r.checks.valid() ? "surface valid: every tissue closed, oriented and intersection free\n"
+                         : "WARNING: the surface fails a check above; no volume mesh\n");
+  o << "\n" << table2_text(steps_table(r));
+  if (r.volume) o << "Table 3 (total cells): " << r.volume->meshing.mesh.tets.size() << " tets\n";
+  if (r.volume) {
+    const VolumeStage& v = *r.volume;
+    o << "\nvolume mesh (CGAL Mesh_3 from the surface, size field edge " << fmt("%.3f mm", v.size_mm) << "): "
+      << v.meshing.mesh.points.size() << " nodes, " << v.meshing.mesh.tets.size() << " tets, " << v.meshing.pieces
+      << " patch pieces\n\n";
+    o << format_quality_table(v.quality) << "\n";
+    o << format_conformity_table(v.conformity, v.meshing.mesh.tissue_names) << "\n";
+    o << sliver_repair_text(v.meshing.repair);
+    for (const auto& w : v.meshing.warnings) o << "WARNING: " << w << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace tissuemesh

@@ -1,0 +1,71 @@
+#include "pipeline/surface_job.h"
+
+#include "pipeline/mesh_job.h"
+
+namespace tissuemesh {
+
+namespace {
+
+void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, Progress& progress) {
+  if (!r.checks.valid()) return;
+  VolumeStage v;
+  v.size_mm = r.remesh ? r.remesh->edge_length_mm : r.quality.mean_edge_mm;  // r.quality: of r.surface()
+  const ApproachField* field = r.approach ? &*r.approach : nullptr;
+  const double L = v.size_mm;
+  const std::function<double(const Eigen::Vector3d&)> h = [L, field](const Eigen::Vector3d& p) {
+    return field ? L * field->relative_size(p) : L;
+  };
+  v.meshing = mesh_complex(r.surface(), h, config.volume, progress);
+  auto stage = progress.stage("volume mesh quality and conformity");
+  v.quality = compute_quality(v.meshing.mesh, r.voxel_volume_mm3);
+  v.conformity = check_conformity(v.meshing.mesh);
+  r.volume = std::move(v);
+}
+
+}  // namespace
+
+SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
+                                 Progress& progress) {
+  SurfaceJobResult r;
+  const LabelImage ids = tissue_id_image(labels, image_name, config.tissues, r.voxel_volume_mm3, progress);
+  r.extraction = extract_surface(ids, config.tissues.names(), config.surface, progress);
+  r.extracted_quality = surface_quality(r.extraction.surface);
+  r.checks = r.extraction.checks;
+  r.quality = r.extracted_quality;
+  if (!config.surface.remesh() || !r.extraction.checks.valid()) {
+    mesh_volume(r, config, progress);
+    return r;
+  }
+  // A stage of its own, so that every second between extraction and remeshed surface is timed
+  // (bench/bench_surface.sh counts it with the remeshing).
+  const SurfaceProjection on_extracted = [&] {
+    auto stage = progress.stage("projection onto the extracted surface");
+    return SurfaceProjection(r.extraction.surface);
+  }();
+  RemeshOptions options;
+  options.target_vertices = config.surface.target_vertices;
+  options.target_edge_mm = config.surface.target_edge_mm;
+  options.iterations = config.surface.remesh_iterations;
+  options.max_deviation_mm = 0.5 * ids.spacing.norm();  // half a voxel diagonal
+  if (config.approach.enabled) {
+    r.approach.emplace(r.extraction.surface, config.approach);
+    const ApproachField* field = &*r.approach;
+    options.relative_size = [field](const Eigen::Vector3d& p) { return field->relative_size(p); };
+  }
+  r.remesh = remesh_surface(r.extraction.surface, on_extracted, options, progress);
+  {
+    auto stage = progress.stage("remeshed surface quality");
+    r.checks = r.remesh->checks;
+    r.quality = surface_quality(r.remesh->surface);
+    if (r.approach) r.grading = measure_grading(r.remesh->surface, *r.approach);
+  }
+  {
+    auto stage = progress.stage("Hausdorff distance to the extracted surface");
+    const SurfaceProjection on_remeshed(r.remesh->surface);
+    r.hausdorff = hausdorff_distance(r.remesh->surface, on_remeshed, r.extraction.surface, on_extracted);
+  }
+  mesh_volume(r, config, progress);
+  return r;
+}
+
+}  // namespace tissuemesh

@@ -1,0 +1,57 @@
+// The surface pipeline's job (issues #5, #6): label image + config -> multi-material surface with
+// its checks and quality (the seed paper's Tables 1 and 2 and per-tissue volume against voxel
+// volume) -> tet mesh of that surface (volume/complex_mesher.h) with its quality and conformity.
+// The volume mesher's size field is the surface's: h(x) = L s(x) with L the remesher's edge length
+// (the mean edge of the extracted surface without remeshing) and s the approach grading (1 without
+// it). Nothing is printed; stages go through `progress`.
+#pragma once
+
+#include "core/label_image.h"
+#include "core/progress.h"
+#include "pipeline/mesh_config.h"
+#include "surface/approach_field.h"
+#include "volume/complex_mesher.h"
+#include "quality/conformity.h"
+#include "quality/mesh_quality.h"
+#include "surface/surface_distance.h"
+#include "surface/surface_extraction.h"
+#include "surface/surface_quality.h"
+#include "surface/surface_remesh.h"
+
+#include <map>
+#include <optional>
+#include <string>
+
+namespace tissuemesh {
+
+/// The tet mesh of the surface and what it measured.
+struct VolumeStage {
+  ComplexMeshResult meshing;
+  double size_mm = 0.0;          ///< L of the size field h(x) = L s(x), mm
+  QualityReport quality;         ///< per tissue, voxel volume as reference
+  ConformityReport conformity;
+};
+
+struct SurfaceJobResult {
+  SurfaceExtraction extraction;             ///< extracted surface, repair, vertex counts and its checks
+  SurfaceQuality extracted_quality;         ///< Table 1 figures of the extracted surface
+  std::optional<RemeshResult> remesh;       ///< when the config asks for remeshing
+  std::optional<SurfaceDistance> hausdorff; ///< remeshed vs extracted surface
+  std::optional<ApproachField> approach;    ///< when approach.enabled
+  std::optional<ApproachGrading> grading;   ///< measured on surface() when approach.enabled
+  SurfaceCheckReport checks;                ///< of surface()
+  SurfaceQuality quality;                   ///< Table 1 figures of surface()
+  std::map<int, double> voxel_volume_mm3;   ///< tissue id -> voxel volume of the tissue
+  std::optional<VolumeStage> volume;        ///< the tet mesh, when the surface passes its checks
+
+  /// The pipeline's result: the remeshed surface, or the extracted one without remeshing.
+  const TriSurface& surface() const { return remesh ? remesh->surface : extraction.surface; }
+};
+
+/// Throws InputError for bad labels (see tissue_id_image), MeshingError when the image has no
+/// boundary. A surface failing its checks is returned without a volume mesh (the caller reports
+/// it), not thrown.
+SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
+                                 Progress& progress);
+
+}  // namespace tissuemesh

@@ -1,0 +1,572 @@
+#include "surface/remesh_complex.h"
+
+#include "core/face_key.h"
+#include "surface/run_at_once.h"
+#include "surface/triangle_geometry.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tissuemesh {
+namespace {
+
+using Eigen::Vector3d;
+
+/// A collapse, flip or relaxation move is refused when a triangle's normal turns by more than
+/// this (cos 60 deg): it would fold the surface or leave the reference shape's tangent plane.
+constexpr double kMinNormalTurnCos = 0.5;
+/// Flips keep the surface shape: the new pair of triangles must be at least this flat (cos 25 deg),
+/// or no less flat than the old pair.
+constexpr double kFlipFlatCos = 0.906;
+/// The approximation bound is at least this fraction of the edge length L.
+constexpr double kDeviationPerEdge = 0.25;
+/// Size cap around stuck edges (surface/graded_size_cap.h): h = 1.5 times the stuck edge there, so
+/// an isosceles triangle on it whose sides reach the split threshold 4/3 h still has an apex angle
+/// of 2 asin(1 / (2 * 1.5 * 4/3)) = 29 degrees (1.93 gave 30 degrees only for sides of exactly h);
+/// the size then grows by 0.4 mm per mm, so neighbouring triangles differ in size by a factor 1.4
+/// at most. Measured on the phantom before the smoothing's hand-over (keeps_represented) (angles
+/// under 30 degrees at 21K / 2.1K, 2.1K minimum angle): 1.93: 8 / 27, 22.5; 1.7: 4 / 28, 21.5;
+/// 1.5: 7 / 12, 25.8; 1.45: 10 / 13, 26.4. The counts move by a few angles between neighbouring
+/// factors: this is a tuned value, not a threshold.
+constexpr double kCapFactor = 1.5;
+constexpr double kCapGradation = 0.4;
+/// A closed junction loop keeps at least this many edges. Three would do topologically, but a loop
+/// only a few voxel faces long (a sub-resolution contact, kept at its voxel corners by the
+/// extraction) then becomes one triangle inscribed in a rectangle, obtuse with two angles under 30
+/// degrees (measured on the 21K phantom's 1.4 x 1.5 mm fgt|skin contact: 29.1, 29.1, 121.8);
+/// four vertices evenly spaced along it make a near-square of two near-right triangles.
+constexpr int kMinLoopEdges = 4;
+/// edges() lists the two halves of the triangle list on two threads from this many triangles on
+/// (a smaller list takes less time than starting the threads).
+constexpr std::size_t kParallelEdgesFrom = 20000;
+
+/// The input's bounding box widened by a tenth of its diagonal on every side (a unit box for an
+/// empty input): the remesher's vertices stay on or near the input surface, so the grids' cells
+/// cover them (a grid still works beyond its region, only with more candidates per query).
+Eigen::AlignedBox3d widened_bounds(const TriSurface& in) {
+  Eigen::AlignedBox3d box;
+  for (const Vector3d& p : in.points) box.extend(p);
+  if (box.isEmpty()) return Eigen::AlignedBox3d(Vector3d::Zero(), Vector3d::Ones());
+  const Vector3d margin = Vector3d::Constant(0.1 * box.diagonal().norm() + 1.0);
+  return Eigen::AlignedBox3d(box.min() - margin, box.max() + margin);
+}
+
+
+}  // namespace
+
+RemeshComplex::RemeshComplex(const TriSurface& in, const SurfaceProjection& projection, const RemeshOptions& options)
+    : proj_(projection),
+      size_(options.relative_size),
+      region_(widened_bounds(in)),
+      cap_(kCapFactor, kCapGradation, region_),
+      max_deviation_(options.max_deviation_mm),
+      threads_(std::clamp(options.threads, 1, 2)) {
+  x_ = in.points;
+  reference_ = in.points;
+  represents_.resize(x_.size());
+  for (int v = 0; v < static_cast<int>(x_.size()); ++v) represents_[v] = {v};
+  tri_ = in.triangles;
+  patch_ = projection.patches().patch_of_triangle;
+  tri_alive_.assign(tri_.size(), 1);
+  vt_.resize(x_.size());
+  for (int t = 0; t < static_cast<int>(tri_.size()); ++t)
+    for (int v : tri_[t]) vt_[v].push_back(t);
+  curve_edges_.assign(in.junctions.size(), 0);
+  curve_closed_.assign(in.junctions.size(), 0);
+  std::vector<int> degree(x_.size(), 0), end(x_.size(), 0), curve_of(x_.size(), -1), curves_at(x_.size(), 0);
+  for (int c = 0; c < static_cast<int>(in.junctions.size()); ++c) {
+    const std::vector<int>& line = in.junctions[c];
+    curve_closed_[c] = line.size() > 2 && line.front() == line.back();
+    if (!curve_closed_[c]) {
+      ++end[line.front()];
+      ++end[line.back()];
+    }
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      curve_edge_[edge_key(line[i], line[i + 1])] = c;
+      ++curve_edges_[c];
+      for (int v : {line[i], line[i + 1]}) {
+        ++degree[v];
+        if (curve_of[v] != c) ++curves_at[v];
+        curve_of[v] = c;
+      }
+    }
+  }
+  kind_.resize(x_.size());
+  owner_.resize(x_.size());
+  for (std::size_t v = 0; v < x_.size(); ++v) {
+    if (degree[v] == 0) {
+      kind_[v] = Kind::Surface;
+      owner_[v] = vt_[v].empty() ? -1 : patch_[vt_[v][0]];
+      for (int t : vt_[v])
+        if (patch_[t] != owner_[v]) kind_[v] = Kind::Corner;  // a pinch: never move it
+    } else if (degree[v] == 2 && end[v] == 0 && curves_at[v] == 1) {
+      kind_[v] = Kind::Curve;
+      owner_[v] = curve_of[v];
+    } else {
+      kind_[v] = Kind::Corner;
+      owner_[v] = -1;
+    }
+  }
+  vertex_alive_.assign(x_.size(), 1);
+  for (std::size_t v = 0; v < x_.size(); ++v)
+    if (vt_[v].empty()) vertex_alive_[v] = 0;
+  alive_vertices_ = std::count(vertex_alive_.begin(), vertex_alive_.end(), 1);
+}
+
+double RemeshComplex::deviation() const {
+  return max_deviation_ > 0.0 ? std::max(max_deviation_, kDeviationPerEdge * L) * slack_ : 0.0;
+}
+
+std::size_t RemeshComplex::corners() const {
+  std::size_t n = 0;
+  for (std::size_t v = 0; v < x_.size(); ++v) n += vertex_alive_[v] && kind_[v] == Kind::Corner;
+  return n;
+}
+
+double RemeshComplex::s(const Vector3d& p) const {
+  const double s0 = size_ ? size_(p) : 1.0;
+  return cap_.size() == 0 ? s0 : std::min(s0, cap_(p) / L);
+}
+
+double RemeshComplex::weighted_area() const {
+  double sum = 0.0;
+  for (std::size_t t = 0; t < tri_.size(); ++t) {
+    if (!tri_alive_[t]) continue;
+    const Vector3d &a = x_[tri_[t][0]], &b = x_[tri_[t][1]], &c = x_[tri_[t][2]];
+    const double st = s((a + b + c) / 3.0);
+    sum += area_vector(a, b, c).norm() / (st * st);
+  }
+  return sum;
+}
+
+std::vector<std::array<int, 2>> RemeshComplex::edges() const {
+  // Each edge once, from its lowest-indexed live triangle: a triangle's edges depend on nothing
+  // but its own ring, so the two halves of the triangle list are listed on two threads and joined
+  // in order (the list is the one a single pass makes; 0.4 s of a 21K remeshing on one thread).
+  auto list = [this](std::size_t begin, std::size_t end, std::vector<std::array<int, 2>>& out) {
+    for (std::size_t t = begin; t < end; ++t) {
+      if (!tri_alive_[t]) continue;
+      for (int i = 0; i < 3; ++i) {
+        const int a = tri_[t][i], b = tri_[t][(i + 1) % 3];
+        bool first = true;
+        for (int u : vt_[a])
+          if (u < static_cast<int>(t) && has(u, b)) first = false;
+        if (first) out.push_back({std::min(a, b), std::max(a, b)});
+      }
+    }
+  };
+  std::vector<std::array<int, 2>> out, second;
+  out.reserve(3 * tri_.size() / 2 + 16);  // a closed surface has 3/2 edges per triangle
+  if (tri_.size() < kParallelEdgesFrom) {
+    list(0, tri_.size(), out);
+    return out;
+  }
+  const std::size_t half = tri_.size() / 2;
+  second.reserve(3 * half / 2 + 16);
+  run_at_once([&] { list(0, half, out); }, [&] { list(half, tri_.size(), second); }, threads_);
+  out.insert(out.end(), second.begin(), second.end());
+  return out;
+}
+
+bool RemeshComplex::edge_exists(int a, int b) const {
+  if (!vertex_alive_[a] || !vertex_alive_[b]) return false;
+  for (int t : vt_[a])
+    if (has(t, b)) return true;
+  return false;
+}
+
+void RemeshComplex::edge_triangles(int a, int b, std::vector<int>& out) const {
+  out.clear();
+  for (int t : vt_[a])
+    if (has(t, b)) out.push_back(t);
+}
+
+void RemeshComplex::neighbours(int v, std::vector<int>& out) const {
+  out.clear();
+  for (int t : vt_[v])
+    for (int w : tri_[t])
+      if (w != v) out.push_back(w);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+int RemeshComplex::curve_of_edge(int a, int b) const {
+  auto it = curve_edge_.find(edge_key(a, b));
+  return it == curve_edge_.end() ? -1 : it->second;
+}
+
+RemeshComplex::Vector3d RemeshComplex::normal(int t) const {
+  return area_vector(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]).normalized();
+}
+
+RemeshComplex::Vector3d RemeshComplex::moved_normal(int t, int v, const Vector3d& p) const {
+  Vector3d q[3];
+  for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == v ? p : x_[tri_[t][i]];
+  const Vector3d n = area_vector(q[0], q[1], q[2]);
+  const double len = n.norm();
+  return len > 0.0 ? Vector3d(n / len) : Vector3d::Zero();
+}
+
+bool RemeshComplex::move_keeps_normals(int v, const Vector3d& p, const std::vector<int>& tris, const std::vector<int>& skip) const {
+  for (int t : tris) {
+    if (std::find(skip.begin(), skip.end(), t) != skip.end()) continue;
+    if (moved_normal(t, v, p).dot(normal(t)) < kMinNormalTurnCos) return false;
+  }
+  return true;
+}
+
+double RemeshComplex::ring_distance(int r, int w, int v, const Vector3d& p) const {
+  double d = INFINITY;
+  for (int t : vt_[w]) {
+    Vector3d q[3];
+    for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == v ? p : x_[tri_[t][i]];
+    d = std::min(d, point_triangle_distance(reference_[r], q[0], q[1], q[2]));
+    if (d <= deviation()) break;
+  }
+  return d;
+}
+
+bool RemeshComplex::keeps_represented(int v, const Vector3d& p, std::vector<std::array<int, 2>>* handoff) const {
+  if (!(deviation() > 0.0) || represents_[v].empty()) return true;
+  std::vector<int> nb;
+  if (handoff) {
+    handoff->clear();
+    neighbours(v, nb);
+  }
+  for (int r : represents_[v]) {
+    if (ring_distance(r, v, v, p) <= deviation()) continue;
+    const auto w = std::find_if(nb.begin(), nb.end(), [&](int u) { return ring_distance(r, u, v, p) <= deviation(); });
+    if (w == nb.end()) return false;
+    handoff->push_back({r, *w});
+  }
+  return true;
+}
+
+RemeshComplex::NewTriangle RemeshComplex::moved_triangle(int t, int v, const Vector3d& p, int id) const {
+  NewTriangle n;
+  for (int i = 0; i < 3; ++i) {
+    const bool moved = tri_[t][i] == v;
+    n.v[i] = moved ? id : tri_[t][i];
+    n.p[i] = moved ? p : x_[tri_[t][i]];
+  }
+  return n;
+}
+
+void RemeshComplex::collect_moved(const std::vector<int>& tris, const std::vector<int>& skip, int v, const Vector3d& p,
+                                  int id) {
+  std::vector<NewTriangle>& created = scratch().created;
+  created.clear();
+  for (int t : tris)
+    if (std::find(skip.begin(), skip.end(), t) == skip.end()) created.push_back(moved_triangle(t, v, p, id));
+}
+
+double RemeshComplex::ring_min_angle(int v, const Vector3d& p) const {
+  double m = INFINITY;
+  for (int t : vt_[v]) {
+    const NewTriangle q = moved_triangle(t, v, p, v);
+    m = std::min(m, min_angle(q.p[0], q.p[1], q.p[2]));
+  }
+  return m;
+}
+
+RemeshComplex::RingShape RemeshComplex::ring_shape(int v, const Vector3d& p, double poor_angle_rad) const {
+  RingShape r{INFINITY, INFINITY, 0};
+  for (int t : vt_[v]) {
+    const NewTriangle q = moved_triangle(t, v, p, v);
+    for (double a : triangle_angles(q.p[0], q.p[1], q.p[2])) {
+      r.min_angle = std::min(r.min_angle, a);
+      r.poor_angles += a < poor_angle_rad;
+    }
+    r.min_quality = std::min(r.min_quality, triangle_quality(q.p[0], q.p[1], q.p[2]));
+  }
+  return r;
+}
+
+double RemeshComplex::shorter_curve_edge(int v, const Vector3d& p) const {
+  std::vector<int> nb;
+  neighbours(v, nb);
+  double m = INFINITY;
+  for (int w : nb)
+    if (curve_of_edge(v, w) == owner_[v]) m = std::min(m, (x_[w] - p).norm());
+  return m;
+}
+
+RemeshComplex::Vector3d RemeshComplex::vertex_normal(int v) const {
+  Vector3d n = Vector3d::Zero();
+  for (int t : vt_[v]) n += area_vector(x_[tri_[t][0]], x_[tri_[t][1]], x_[tri_[t][2]]);
+  return n.norm() == 0.0 ? n : Vector3d(n.normalized());
+}
+
+bool RemeshComplex::tangential_target(int v, const Vector3d& n, const Vector3d& goal, Vector3d& target) const {
+  if (n.isZero()) return false;
+  const Vector3d d = goal - x_[v];
+  Vector3d n_ref;
+  target = proj_.onto_patch(owner_[v], x_[v] + d - n.dot(d) * n, &n_ref);
+  return n_ref.dot(n) > 0.0;  // else the far side of a thin sheet: stay
+}
+
+bool RemeshComplex::try_move(int v, const Vector3d& p, bool handoff) {
+  std::vector<std::array<int, 2>> handed;
+  if (!move_keeps_normals(v, p, vt_[v], {}) || !keeps_represented(v, p, handoff ? &handed : nullptr)) return false;
+  collect_moved(vt_[v], {}, v, p, v);
+  if (would_intersect(vt_[v])) return false;
+  for (const auto& [r, w] : handed) {
+    represents_[v].erase(std::find(represents_[v].begin(), represents_[v].end(), r));
+    represents_[w].push_back(r);
+  }
+  x_[v] = p;
+  for (int t : vt_[v]) index_triangle(t);
+  return true;
+}
+
+bool RemeshComplex::split_point(int a, int b, const std::vector<int>& ts, Vector3d& m) const {
+  const int curve = curve_of_edge(a, b);
+  m = 0.5 * (x_[a] + x_[b]);
+  if (curve >= 0) {
+    m = proj_.onto_curve(curve, m);
+    return true;
+  }
+  Vector3d n_ref, n = Vector3d::Zero();
+  for (int t : ts) n += normal(t);
+  m = proj_.onto_patch(patch_[ts[0]], m, &n_ref);
+  return n_ref.dot(n) > 0.0;
+}
+
+bool RemeshComplex::split(int a, int b) {
+  std::vector<int> ts;
+  edge_triangles(a, b, ts);
+  const int curve = curve_of_edge(a, b);
+  Vector3d m;
+  if (!split_point(a, b, ts, m)) return false;
+  const int v = static_cast<int>(x_.size());
+  std::vector<NewTriangle>& created = scratch().created;
+  created.clear();
+  for (int t : ts) {
+    created.push_back(moved_triangle(t, b, m, v));
+    created.push_back(moved_triangle(t, a, m, v));
+  }
+  if (would_intersect(ts)) return false;
+  if (curve < 0) {
+    kind_.push_back(Kind::Surface);
+    owner_.push_back(patch_[ts[0]]);
+  } else {
+    kind_.push_back(Kind::Curve);
+    owner_.push_back(curve);
+    curve_edge_.erase(edge_key(a, b));
+    curve_edge_[edge_key(a, v)] = curve;
+    curve_edge_[edge_key(v, b)] = curve;
+    ++curve_edges_[curve];
+  }
+  x_.push_back(m);
+  represents_.emplace_back();
+  vt_.emplace_back();
+  vertex_alive_.push_back(1);
+  ++alive_vertices_;
+  for (int t : ts) {
+    std::array<int, 3>& tr = tri_[t];
+    int i = 0;
+    while (!((tr[i] == a || tr[i] == b) && (tr[(i + 1) % 3] == a || tr[(i + 1) % 3] == b))) ++i;
+    const int u = tr[i], w = tr[(i + 1) % 3], o = tr[(i + 2) % 3];
+    const int n = static_cast<int>(tri_.size());
+    tr = {u, v, o};
+    tri_.push_back({v, w, o});
+    patch_.push_back(patch_[t]);
+    tri_alive_.push_back(1);
+    std::replace(vt_[w].begin(), vt_[w].end(), t, n);
+    vt_[o].push_back(n);
+    vt_[v].push_back(t);
+    vt_[v].push_back(n);
+    index_triangle(t);
+    index_triangle(n);
+  }
+  ++splits;
+  return true;
+}
+
+bool RemeshComplex::collapse_allowed(int a, int b, const std::vector<int>& ts, const std::vector<int>& na) const {
+  if (kind_[a] == Kind::Corner) return false;
+  const int curve = curve_of_edge(a, b);
+  if (kind_[a] == Kind::Surface && curve >= 0) return false;
+  if (kind_[a] == Kind::Curve) {
+    if (curve != owner_[a]) return false;
+    if (curve_edges_[curve] <= (curve_closed_[curve] ? kMinLoopEdges : 1)) return false;
+  }
+  // Link condition: the common neighbours are exactly the opposite vertices of the edge's triangles.
+  thread_local std::vector<int> nb, common;  // per thread (partitioned sweeps), kept allocated
+  common.clear();
+  neighbours(b, nb);
+  std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
+  return common.size() == ts.size();
+}
+
+bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
+  // Per thread (partitioned sweeps), kept allocated: most of a sweep's ~10^6 attempts fail fast.
+  thread_local std::vector<int> ts, na;
+  thread_local std::vector<std::array<Vector3d, 3>> ring;
+  edge_triangles(a, b, ts);
+  if (ts.empty()) return false;
+  neighbours(a, na);
+  // No edge of the result too long: the test that refuses most attempts (at 21K 955K of 1.2M),
+  // so it comes first. Every test here is free of side effects: their order changes no outcome.
+  for (int w : na)
+    if (w != b && (x_[b] - x_[w]).norm() > max_relative * h(0.5 * (x_[b] + x_[w]))) return false;
+  if (!collapse_allowed(a, b, ts, na)) return false;
+  if (!move_keeps_normals(a, x_[b], vt_[a], ts)) return false;
+  // Approximation: every input vertex a or b stands for stays within max_deviation of the new
+  // triangles around b (a removal is checked against what remains, so errors cannot pile up).
+  if (deviation() > 0.0) {
+    ring.clear();
+    for (int v : {a, b})
+      for (int t : vt_[v]) {
+        if (std::find(ts.begin(), ts.end(), t) != ts.end()) continue;
+        std::array<Vector3d, 3> q;
+        for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == a ? x_[b] : x_[tri_[t][i]];
+        ring.push_back(q);
+      }
+    for (int v : {a, b})
+      for (int r : represents_[v]) {
+        // Within the bound of one ring triangle is enough: stop at the first.
+        const bool near = std::any_of(ring.begin(), ring.end(), [&](const std::array<Vector3d, 3>& q) {
+          return point_triangle_distance(reference_[r], q[0], q[1], q[2]) <= deviation();
+        });
+        if (!near) return false;
+      }
+  }
+  // Fidelity: every changed triangle stays close to its patch of the reference and faces the same
+  // way there (a triangle bridging the two sides of a thin sheet fails both).
+  for (int t : vt_[a]) {
+    if (std::find(ts.begin(), ts.end(), t) != ts.end()) continue;
+    Vector3d q[3];
+    for (int i = 0; i < 3; ++i) q[i] = tri_[t][i] == a ? x_[b] : x_[tri_[t][i]];
+    const Vector3d g = (q[0] + q[1] + q[2]) / 3.0, n = area_vector(q[0], q[1], q[2]).normalized();
+    Vector3d n_ref;
+    const Vector3d on = proj_.onto_patch(patch_[t], g, &n_ref);
+    if (n.dot(n_ref) < kMinNormalTurnCos) return false;
+    if (deviation() > 0.0 && (on - g).norm() > deviation()) return false;
+  }
+  // A triangle of a that would coincide with one of b (a pocket between patches closing up).
+  for (int t : vt_[a]) {
+    if (std::find(ts.begin(), ts.end(), t) != ts.end()) continue;
+    for (int u : vt_[b]) {
+      int shared = 0;
+      for (int w : tri_[t]) shared += w != a && has(u, w);
+      if (shared == 2) return false;
+    }
+  }
+  collect_moved(vt_[a], ts, a, x_[b], b);
+  if (would_intersect(vt_[a])) {
+    if (tracking_rings_) ring_changed_[a] = ring_changed_[b] = 1;  // the obstacle may go: try again
+    return false;
+  }
+  // Apply.
+  if (tracking_rings_)
+    for (int t : vt_[a])  // (ts among them)
+      for (int w : tri_[t]) ring_changed_[w] = 1;
+  for (int t : ts) {
+    tri_alive_[t] = 0;
+    grid_.remove(t);
+    for (int w : tri_[t]) vt_[w].erase(std::remove(vt_[w].begin(), vt_[w].end(), t), vt_[w].end());
+  }
+  for (int t : vt_[a]) {
+    std::replace(tri_[t].begin(), tri_[t].end(), a, b);
+    vt_[b].push_back(t);
+    index_triangle(t);
+  }
+  std::sort(vt_[b].begin(), vt_[b].end());
+  vt_[a].clear();
+  if (kind_[a] == Kind::Curve) {
+    const int curve = owner_[a];
+    curve_edge_.erase(edge_key(a, b));
+    for (int w : na) {
+      auto it = curve_edge_.find(edge_key(a, w));
+      if (it == curve_edge_.end()) continue;
+      curve_edge_.erase(it);
+      curve_edge_[edge_key(b, w)] = curve;
+    }
+    --curve_edges_[curve];
+  }
+  represents_[b].insert(represents_[b].end(), represents_[a].begin(), represents_[a].end());
+  represents_[a].clear();
+  vertex_alive_[a] = 0;
+  // Counted at once, or by the partitioned sweep once both halves are done (remesh_partition.cpp).
+  if (halves_running_) {
+    ++scratch().collapsed;
+  } else {
+    --alive_vertices_;
+    ++collapses;
+  }
+  return true;
+}
+
+bool RemeshComplex::collapse_either(int a, int b, double max_relative) {
+  // Prefer removing the vertex of lower rank (surface before curve), then the higher index.
+  if (kind_[a] < kind_[b] || (kind_[a] == kind_[b] && a > b)) {
+    if (try_collapse(a, b, max_relative)) return true;
+    return try_collapse(b, a, max_relative);
+  }
+  if (try_collapse(b, a, max_relative)) return true;
+  return try_collapse(a, b, max_relative);
+}
+
+bool RemeshComplex::flip_passes_local_tests(int a, int b, FlipQuad& quad) const {
+  quad.c = quad.d = -1;
+  if (curve_of_edge(a, b) >= 0) return false;
+  thread_local std::vector<int> ts;  // per thread (flip_all tests on two), kept allocated
+  edge_triangles(a, b, ts);
+  if (ts.size() != 2 || patch_[ts[0]] != patch_[ts[1]]) return false;
+  const int t1 = ts[0], t2 = ts[1];
+  // Orient: t1 holds the directed edge a -> b.
+  auto directed = [&](int t, int p, int q) {
+    for (int i = 0; i < 3; ++i)
+      if (tri_[t][i] == p && tri_[t][(i + 1) % 3] == q) return true;
+    return false;
+  };
+  if (!directed(t1, a, b)) std::swap(a, b);
+  if (!directed(t1, a, b) || !directed(t2, b, a)) return false;
+  auto third = [&](int t, int p, int q) {
+    for (int w : tri_[t])
+      if (w != p && w != q) return w;
+    return -1;
+  };
+  const int c = third(t1, a, b), d = third(t2, a, b);
+  quad = {a, b, c, d, t1, t2};
+  if (c == d || edge_exists(c, d)) return false;
+  // A flip takes a triangle from a and from b; neither may be left with three (such a vertex
+  // bounds its triangles' smallest angle by half that of the triangle around them).
+  if (vt_[a].size() <= 4 || vt_[b].size() <= 4) return false;
+  const Vector3d &pa = x_[a], &pb = x_[b], &pc = x_[c], &pd = x_[d];
+  // Delaunay: flip when the opposite angles sum beyond pi, i.e. the new diagonal gives the
+  // larger smallest angle.
+  if (angle_at_c(pa, pb, pc) + angle_at_c(pb, pa, pd) <= M_PI + 1e-9) return false;
+  if (std::min(min_angle(pa, pd, pc), min_angle(pd, pb, pc)) <= std::min(min_angle(pa, pb, pc), min_angle(pb, pa, pd)))
+    return false;
+  const Vector3d n1 = area_vector(pa, pb, pc).normalized(), n2 = area_vector(pb, pa, pd).normalized();
+  const Vector3d m1 = area_vector(pa, pd, pc).normalized(), m2 = area_vector(pd, pb, pc).normalized();
+  if (m1.dot(m2) < std::min(n1.dot(n2), kFlipFlatCos)) return false;
+  const Vector3d mean = (n1 + n2).normalized();
+  return m1.dot(mean) >= kMinNormalTurnCos && m2.dot(mean) >= kMinNormalTurnCos;
+}
+
+bool RemeshComplex::try_flip(int a_, int b_, FlipQuad* flipped) {
+  FlipQuad q;
+  if (!flip_passes_local_tests(a_, b_, q)) return false;
+  const int a = q.a, b = q.b, c = q.c, d = q.d, t1 = q.t1, t2 = q.t2;
+  const Vector3d &pa = x_[a], &pb = x_[b], &pc = x_[c], &pd = x_[d];
+  scratch().created = {{{a, d, c}, {pa, pd, pc}}, {{d, b, c}, {pd, pb, pc}}};
+  if (would_intersect({t1, t2})) return false;
+  tri_[t1] = {a, d, c};
+  tri_[t2] = {d, b, c};
+  index_triangle(t1);
+  index_triangle(t2);
+  vt_[b].erase(std::remove(vt_[b].begin(), vt_[b].end(), t1), vt_[b].end());
+  vt_[a].erase(std::remove(vt_[a].begin(), vt_[a].end(), t2), vt_[a].end());
+  vt_[d].push_back(t1);
+  vt_[c].push_back(t2);
+  ++flips;
+  if (flipped) *flipped = q;
+  return true;
+}
+
+}  // namespace tissuemesh

@@ -1,0 +1,31 @@
+// Parameters of the surface pipeline (config section `surface:`, issue #5).
+//
+//   surface:
+//     min_island_voxels: 8        # tissue components with fewer voxels join their surroundings (1 = keep all)
+//     relaxation_iterations: 10   # Taubin lambda|mu pairs of the constrained relaxation (0 = voxel corners)
+//     target_vertices: 0          # total vertex budget of the remeshed complex (0 = no remeshing)
+//     target_edge_mm: 0           # or a target edge length in mm (used when target_vertices is 0)
+//     remesh_iterations: 10       # split/collapse/flip/relax rounds (surface/surface_remesh.h)
+#pragma once
+
+#include "core/yaml_map.h"
+
+namespace tissuemesh {
+
+struct SurfaceParams {
+  /// Tissue components with fewer voxels take the region around them before extraction
+  /// (image/small_islands.h); 1 keeps every component.
+  int min_island_voxels = 8;
+  int relaxation_iterations = 10;  ///< Taubin lambda|mu pairs (surface/surface_extraction.h); 0 = none
+  int target_vertices = 0;         ///< remeshing vertex budget; 0 = none (see target_edge_mm)
+  double target_edge_mm = 0.0;     ///< remeshing edge length, mm, when target_vertices == 0; 0 = none
+  int remesh_iterations = 10;      ///< rounds of surface/surface_remesh.h
+
+  bool remesh() const { return target_vertices > 0 || target_edge_mm > 0.0; }
+
+  /// Reads the `surface:` map (unknown keys are errors; values range-checked with the key named).
+  static SurfaceParams from_yaml(YamlMap& map);
+  void to_yaml(YAML::Emitter& out) const;
+};
+
+}  // namespace tissuemesh

@@ -1,0 +1,198 @@
+// Volume mesher of the surface pipeline (issue #6, step 1): CGAL Mesh_3 from the surface complex.
+// Nested spheres (a borderless inner piece that must get its own points) and three boxes (a
+// triple junction that must stay conforming) are meshed; every mesh is conforming, keeps the
+// interfaces of the surface and no others, and each tissue's volume is the one its surface
+// encloses up to the boundary approximation. Also the manifold pieces the domain is built from,
+// a short junction loop of the extraction, and the paper's Tables 2 and 3 in the surface report.
+#include "volume/complex_mesher.h"
+#include "quality/conformity.h"
+#include "core/face_key.h"
+#include "pipeline/mesh_config.h"
+#include "quality/mesh_quality.h"
+#include "pipeline/mesh_report.h"
+#include "pipeline/surface_job.h"
+#include "surface/surface_checks.h"
+#include "volume/surface_pieces.h"
+#include "surface/surface_projection.h"
+#include "surface/surface_remesh.h"
+#include "support/complex_meshes.h"
+#include "support/tolerances.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include <map>
+#include <set>
+
+using namespace tissuemesh;
+using namespace tissuemesh::test;
+
+namespace {
+
+ComplexMeshResult mesh(const RemeshResult& s, const VolumeMeshParams& params = {}) {
+  Progress progress;
+  const double h = s.edge_length_mm;
+  return mesh_complex(s.surface, [h](const Eigen::Vector3d&) { return h; }, params, progress);
+}
+
+/// Per-tissue tet volume against the volume the surface encloses.
+void expect_surface_volumes(const TetMesh& m, const TriSurface& s) {
+  const std::vector<double> volume = tissue_volumes(m);
+  for (const TissueSurfaceCheck& c : check_surface(s).tissues)
+    EXPECT_NEAR(volume[c.tissue_id], c.volume_mm3, kComplexMeshVolumeRel * c.volume_mm3) << c.name;
+}
+
+}  // namespace
+
+TEST(ComplexMesher, NestedSpheresConformingWithTheSurfaceVolumes) {
+  const RemeshResult s = remeshed(nested_spheres(), 2, 300);
+  const ComplexMeshResult r = mesh(s);
+  ASSERT_NO_THROW(r.mesh.validate("CGAL spheres"));
+  const ConformityReport c = check_conformity(r.mesh);
+  EXPECT_TRUE(c.conforming());
+  EXPECT_EQ(c.inverted_tets, 0u);
+  EXPECT_EQ(c.duplicate_node_groups, 0u);
+  // Both balls are there: the inner one, a closed piece without borders, got its own points.
+  EXPECT_EQ(interfaces(c), (std::set<std::pair<int, int>>{{0, 1}, {1, 2}}));
+  EXPECT_EQ(r.pieces, 2u);
+  expect_surface_volumes(r.mesh, s.surface);
+  EXPECT_GE(compute_quality(r.mesh).total.min_dihedral_deg, kComplexMeshMinDihedralDeg);
+}
+
+TEST(ComplexMesher, ThreeBoxesKeepTheirTripleJunctionInterfaces) {
+  const RemeshResult s = remeshed(three_boxes(), 3, 400);
+  const ComplexMeshResult r = mesh(s);
+  const ConformityReport c = check_conformity(r.mesh);
+  EXPECT_TRUE(c.conforming());
+  EXPECT_EQ(interfaces(c), (std::set<std::pair<int, int>>{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}));
+  expect_surface_volumes(r.mesh, s.surface);
+  EXPECT_GE(compute_quality(r.mesh).total.min_dihedral_deg, kComplexMeshMinDihedralDeg);
+  // The triple line x = y = 14.5 voxels stays sharp: mesh nodes lie on it (protected feature).
+  const Eigen::Vector3d origin(-3.0, 2.0, 7.0);
+  std::size_t on_line = 0;
+  for (const auto& p : r.mesh.points) {
+    const Eigen::Vector3d q = p - origin;
+    if (std::abs(q.x() - 14.5) < kConstrainedCoordinateMm && std::abs(q.y() - 14.5) < kConstrainedCoordinateMm) ++on_line;
+  }
+  EXPECT_GE(on_line, 3u);
+}
+
+TEST(ComplexMesher, RunsAreIdenticalAndCellSizeFollowsTheField) {
+  const RemeshResult s = remeshed(nested_spheres(), 2, 300);
+  const ComplexMeshResult a = mesh(s), b = mesh(s);
+  EXPECT_EQ(a.mesh.points, b.mesh.points);
+  EXPECT_EQ(a.mesh.tets, b.mesh.tets);
+  EXPECT_EQ(a.mesh.tissue_ids, b.mesh.tissue_ids);
+  VolumeMeshParams fine;
+  fine.cell_edge_factor = 0.5;
+  EXPECT_GT(mesh(s, fine).mesh.tets.size(), 2 * a.mesh.tets.size());
+}
+
+TEST(SurfacePieces, PatchesSplitAtJunctionsAndBorderOnlyThere) {
+  const TriSurface s = extract(three_boxes(), 3).surface;
+  const SurfacePieces split = manifold_pieces(s);
+  // Six pairs, each one piece (every interface of three boxes is connected).
+  ASSERT_EQ(split.pieces.size(), 6u);
+  EXPECT_EQ(split.duplicated_vertices, 0u);
+  std::set<std::uint64_t> junction;
+  for (const auto& line : s.junctions)
+    for (std::size_t i = 0; i + 1 < line.size(); ++i)
+      junction.insert(edge_key(line[i], line[i + 1]));
+  std::size_t triangles = 0;
+  for (const SurfacePiece& piece : split.pieces) {
+    triangles += piece.triangles.size();
+    // Border edges (one triangle of the piece) must be junction edges of the surface.
+    std::map<std::pair<int, int>, int> uses;
+    for (const auto& t : piece.triangles)
+      for (int e = 0; e < 3; ++e) ++uses[std::minmax(t[e], t[(e + 1) % 3])];
+    for (std::size_t lt = 0; lt < piece.triangles.size(); ++lt) {
+      const auto& local = piece.triangles[lt];
+      const auto& global = s.triangles[piece.source_triangles[lt]];
+      for (int e = 0; e < 3; ++e) {
+        EXPECT_EQ(piece.points[local[e]], s.points[global[e]]);
+        if (uses[std::minmax(local[e], local[(e + 1) % 3])] == 1) {
+          const int a = global[e], b = global[(e + 1) % 3];
+          EXPECT_TRUE(junction.count(edge_key(a, b)));
+        }
+      }
+    }
+  }
+  EXPECT_EQ(triangles, s.triangles.size());
+}
+
+TEST(SurfacePieces, TwoSheetsTouchingAtAPointGetOneVertexEach) {
+  // Tissue 1: two tets sharing only vertex 0; its boundary is one patch 0|1 that is connected
+  // through no edge, so two pieces, no vertex duplicated within a piece.
+  TriSurface s;
+  s.tissue_names = {"t1"};
+  s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  s.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 4, 5}, {0, 6, 4}, {0, 5, 6}, {4, 6, 5}};
+  s.labels.assign(8, {0, 1});
+  s.validate("two tets");
+  const SurfacePieces split = manifold_pieces(s);
+  ASSERT_EQ(split.pieces.size(), 2u);
+  EXPECT_EQ(split.pieces[0].points.size(), 4u);
+  EXPECT_EQ(split.pieces[1].points.size(), 4u);
+  EXPECT_EQ(split.duplicated_vertices, 0u);
+}
+
+TEST(SurfaceExtraction, AOneFaceContactKeepsItsVoxelSizedJunctionLoop) {
+  // Tissues 1 and 3 touch through one voxel face inside tissue 2: the junction around the
+  // contact is a closed loop of 4 edges. Smoothing would shrink it towards a point; it must keep
+  // the voxel face's perimeter (4 voxel edges of 1 mm).
+  const LabelImage img = make_image({8, 8, 8}, {1.0, 1.0, 1.0}, [](int i, int j, int k) {
+    if (i < 1 || j < 1 || k < 1 || i >= 7 || j >= 7 || k >= 7) return 0;
+    if (j == 3 && k == 3 && (i == 3 || i == 4)) return i == 3 ? 1 : 3;
+    return 2;
+  });
+  const TriSurface s = extract(img, 3).surface;
+  // The loop's vertices stay on their voxel corners (as junction corners), so the junction
+  // polylines are its four edges.
+  double length = 0.0;
+  std::size_t edges = 0;
+  for (const auto& line : s.junctions)
+    for (std::size_t i = 0; i + 1 < line.size(); ++i, ++edges) length += (s.points[line[i]] - s.points[line[i + 1]]).norm();
+  EXPECT_EQ(edges, 4u);
+  EXPECT_NEAR(length, 4.0, kConstrainedCoordinateMm);
+}
+
+// The paper's Table 2 and 3 in the surface pipeline's report: every step's counts are those of
+// the surface or mesh that step produced, each tet is counted in exactly one tissue, and Table 3
+// is the tet mesh's total.
+TEST(SurfaceReport, Table2CountsEveryStepAndTable3TheTets) {
+  const MeshConfig config = MeshConfig::parse(
+      YAML::Load("pipeline: surface\ntissues:\n  - {name: a, labels: [1]}\n  - {name: b, labels: [2]}\n"
+                 "  - {name: c, labels: [3]}\nsurface: {target_vertices: 400}\n"),
+      "boxes.yaml");
+  Progress progress;
+  const SurfaceJobResult r = run_surface_job(three_boxes(), "boxes", config, progress);
+  ASSERT_TRUE(r.remesh && r.volume);
+  const nlohmann::json j = surface_job_json(r);
+  const nlohmann::json& rows = j["table2_steps"];
+  ASSERT_EQ(rows.size(), 4u);
+  const nlohmann::json& all = rows[3];
+  EXPECT_EQ(all["tissue"], "all tissues");
+  EXPECT_EQ(all["extracted_surface"]["vertices"], r.extraction.surface.points.size());
+  EXPECT_EQ(all["extracted_surface"]["triangles"], r.extraction.surface.triangles.size());
+  EXPECT_EQ(all["remeshed_surface"]["vertices"], 400);
+  EXPECT_EQ(all["remeshed_surface"]["triangles"], r.remesh->surface.triangles.size());
+  const TetMesh& m = r.volume->meshing.mesh;
+  EXPECT_EQ(all["tet_mesh"]["vertices"], m.points.size());
+  EXPECT_EQ(all["tet_mesh"]["tets"], m.tets.size());
+  std::size_t tets = 0;
+  for (int t = 0; t < 3; ++t) {
+    EXPECT_EQ(rows[t]["tissue"], std::string(1, static_cast<char>('a' + t)));
+    tets += rows[t]["tet_mesh"]["tets"].get<std::size_t>();
+    // A tissue's own vertices are part of the whole, fewer than it at every step.
+    for (const char* step : {"extracted_surface", "remeshed_surface", "tet_mesh"}) {
+      EXPECT_GT(rows[t][step]["vertices"].get<std::size_t>(), 0u) << step;
+      EXPECT_LT(rows[t][step]["vertices"].get<std::size_t>(), all[step]["vertices"].get<std::size_t>()) << step;
+    }
+  }
+  EXPECT_EQ(tets, m.tets.size());
+  EXPECT_EQ(j["table3_total_cells"], m.tets.size());
+  const std::string text = surface_job_text(r);
+  EXPECT_NE(text.find("Table 3 (total cells): " + std::to_string(m.tets.size()) + " tets"), std::string::npos) << text;
+  EXPECT_NE(text.find("Table 2 (vertices and cells after each step)"), std::string::npos);
+}

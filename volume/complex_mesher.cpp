@@ -1,0 +1,143 @@
+// The one CGAL-heavy translation unit of the surface pipeline's volume mesher.
+#include "volume/complex_mesher.h"
+
+#include "core/errors.h"
+#include "volume/free_cell_domain.h"
+#include "volume/mesh3_steps.h"
+#include "volume/surface_pieces.h"
+#include "surface/surface_projection.h"
+#include "surface/surface_quality.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
+#include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/Mesh_polyhedron_3.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polyhedral_complex_mesh_domain_3.h>
+#include <CGAL/make_mesh_3.h>
+
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <utility>
+
+namespace tissuemesh {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Polyhedron = CGAL::Mesh_polyhedron_3<K>::type;
+using Domain = FreeCellDomain;
+using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
+using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, Domain::Curve_index>;
+using Criteria = CGAL::Mesh_criteria_3<Tr>;
+using Point = K::Point_3;
+
+// A CGAL sizing field: factor * h(x), mm, whatever the dimension and index.
+struct Sizing {
+  typedef K::FT FT;
+  typedef K::Point_3 Point_3;
+  typedef Domain::Index Index;
+  const std::function<double(const Eigen::Vector3d&)>* h = nullptr;
+  double factor = 1.0;
+  FT operator()(const Point_3& p, const int, const Index&) const {
+    return factor * (*h)(Eigen::Vector3d(p.x(), p.y(), p.z()));
+  }
+};
+
+Polyhedron to_polyhedron(const SurfacePiece& piece) {
+  std::vector<Point> points;
+  points.reserve(piece.points.size());
+  for (const auto& p : piece.points) points.emplace_back(p[0], p[1], p[2]);
+  std::vector<std::vector<std::size_t>> polygons;
+  polygons.reserve(piece.triangles.size());
+  for (const auto& t : piece.triangles) polygons.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});
+  if (!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(polygons))
+    throw MeshingError("a patch piece " + std::to_string(piece.pair[0]) + "|" + std::to_string(piece.pair[1]) +
+                       " is not a manifold surface (a bug in the piece split)");
+  Polyhedron poly;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, poly);
+  return poly;
+}
+
+}  // namespace
+
+ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<double(const Eigen::Vector3d&)>& size_mm,
+                               const VolumeMeshParams& params, Progress& progress) {
+  surface.validate("the surface to mesh");
+  ComplexMeshResult result;
+  std::vector<Polyhedron> polyhedra;
+  std::vector<std::pair<int, int>> sides;
+  {
+    auto stage = progress.stage("patch pieces");
+    const SurfacePieces split = manifold_pieces(surface);
+    result.pieces = split.pieces.size();
+    result.duplicated_vertices = split.duplicated_vertices;
+    for (const SurfacePiece& piece : split.pieces) {
+      polyhedra.push_back(to_polyhedron(piece));
+      sides.emplace_back(piece.pair[0], piece.pair[1]);
+    }
+    stage.note(std::to_string(result.pieces) + " pieces, " + std::to_string(result.duplicated_vertices) +
+               " vertices duplicated");
+  }
+  if (polyhedra.empty()) throw InputError("the surface to mesh has no triangles");
+
+  auto domain_stage = std::make_unique<Progress::Stage>(progress, "domain and junction features");
+  Domain domain(polyhedra.begin(), polyhedra.end(), sides.begin(), sides.end());
+  // Piece borders (junction curves) and creases sharper than feature_angle_deg become features.
+  domain.detect_features(params.feature_angle_deg);
+  const double mean_edge_mm = surface_quality(surface).mean_edge_mm;
+  const auto [grid, unknown] = domain.index_regions(surface, 0.5 * mean_edge_mm);
+  domain_stage->note(std::to_string(grid->components()) + " free-cell regions (" + std::to_string(unknown) +
+                     " left to rays), " + std::to_string(static_cast<int>(100 * grid->free_share())) +
+                     " % of the grid free");
+  domain_stage.reset();
+
+  namespace p = CGAL::parameters;
+  // The equilateral triangle of edge e has circumradius e / sqrt(3); the regular tet of edge e
+  // has circumradius e sqrt(6) / 4.
+  const Sizing edge{&size_mm, params.surface_edge_factor};
+  const Sizing facet{&size_mm, params.surface_edge_factor / std::sqrt(3.0)};
+  const Sizing cell{&size_mm, params.cell_edge_factor * std::sqrt(6.0) / 4.0};
+  const double distance =
+      params.facet_distance_mm > 0 ? params.facet_distance_mm : 0.1 * mean_edge_mm;
+  Criteria criteria(p::edge_size = edge, p::facet_angle = params.facet_angle_deg, p::facet_size = facet,
+                    p::facet_distance = distance, p::cell_radius_edge_ratio = params.cell_radius_edge_ratio,
+                    p::cell_size = cell);
+
+  C3t3 c3t3;
+  {
+    auto stage = progress.stage("protect junctions, seed pieces");
+    CGAL::Mesh_3::internal::init_c3t3_with_features(c3t3, domain, criteria);
+    domain.add_vertices_to_c3t3_on_patch_without_feature_edges(c3t3);
+    result.initial_points = c3t3.triangulation().number_of_vertices();
+    stage.note(std::to_string(result.initial_points) + " initial points");
+  }
+  mesh3::refine(c3t3, domain, criteria, progress);
+  mesh3::optimise(c3t3, domain, params.optimise, progress, result.warnings);
+
+  auto stage = progress.stage("extract mesh");
+  result.mesh = mesh3::cells(
+      c3t3, [](double x, double y, double z) { return Eigen::Vector3d(x, y, z); }, false, surface.tissue_names);
+  // The smoothing may move vertices of curved interfaces over the input surface (they stay on it);
+  // the projection's trees are built only when it runs.
+  std::optional<SurfaceProjection> projection;
+  SurfaceProjector onto_surface;
+  if (params.optimise.smooth_slivers_below_deg > 0) {
+    projection.emplace(surface);
+    onto_surface = [&](int p, int q, Eigen::Vector3d& x) {
+      const int patch = projection->patches().patch_of_pair(p, q);
+      if (patch < 0) return false;
+      x = projection->onto_patch(patch, x);
+      return true;
+    };
+  }
+  result.repair = repair_slivers(result.mesh, params.optimise, result.warnings, onto_surface);
+  stage.note(std::to_string(result.mesh.tets.size()) + " tets, " + std::to_string(result.mesh.points.size()) +
+             " nodes");
+  return result;
+}
+
+}  // namespace tissuemesh

@@ -1,0 +1,48 @@
+#include "volume/direct_mesh_params.h"
+
+#include "core/errors.h"
+
+namespace tissuemesh {
+
+DirectMeshParams DirectMeshParams::from_yaml(YamlMap& m) {
+  DirectMeshParams p;
+  // Bounds: CGAL's refinement is only proven to terminate for facet angle <= 30 degrees and
+  // radius-edge ratio >= 2 (CGAL Mesh_3 manual).
+  p.facet_angle_deg = m.in_range("facet_angle_deg", p.facet_angle_deg, 0.0, 30.0);
+  p.facet_size_mm = m.positive("facet_size_mm", p.facet_size_mm);
+  p.facet_distance_mm = m.positive("facet_distance_mm", p.facet_distance_mm);
+  p.cell_radius_edge_ratio = m.in_range("cell_radius_edge_ratio", p.cell_radius_edge_ratio, 2.0, 100.0);
+  p.cell_size_mm = m.positive("cell_size_mm", p.cell_size_mm);
+  YamlMap per = m.map("cell_size_per_tissue_mm");
+  for (const std::string& name : per.keys()) p.cell_size_per_tissue_mm[name] = per.positive(name, 1.0);
+  per.finish();
+  p.refine_tissue = m.text("refine_tissue", p.refine_tissue);
+  p.refine_size_mm = m.positive("refine_size_mm", p.refine_size_mm);
+  p.refine_radius_mm = m.positive("refine_radius_mm", p.refine_radius_mm);
+  p.smooth_boundaries = m.boolean("smooth_boundaries", p.smooth_boundaries);
+  p.smoothing_sigma_mm = m.in_range("smoothing_sigma_mm", p.smoothing_sigma_mm, 0.0, 100.0);
+  p.optimise.read(m);
+  m.finish();
+  return p;
+}
+
+void DirectMeshParams::to_yaml(YAML::Emitter& out) const {
+  out << YAML::BeginMap;
+  out << YAML::Key << "facet_angle_deg" << YAML::Value << facet_angle_deg;
+  out << YAML::Key << "facet_size_mm" << YAML::Value << facet_size_mm;
+  out << YAML::Key << "facet_distance_mm" << YAML::Value << facet_distance_mm;
+  out << YAML::Key << "cell_radius_edge_ratio" << YAML::Value << cell_radius_edge_ratio;
+  out << YAML::Key << "cell_size_mm" << YAML::Value << cell_size_mm;
+  out << YAML::Key << "cell_size_per_tissue_mm" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  for (const auto& [name, size] : cell_size_per_tissue_mm) out << YAML::Key << name << YAML::Value << size;
+  out << YAML::EndMap;
+  out << YAML::Key << "refine_tissue" << YAML::Value << refine_tissue;
+  out << YAML::Key << "refine_size_mm" << YAML::Value << refine_size_mm;
+  out << YAML::Key << "refine_radius_mm" << YAML::Value << refine_radius_mm;
+  out << YAML::Key << "smooth_boundaries" << YAML::Value << smooth_boundaries;
+  out << YAML::Key << "smoothing_sigma_mm" << YAML::Value << smoothing_sigma_mm;
+  optimise.emit(out);
+  out << YAML::EndMap;
+}
+
+}  // namespace tissuemesh

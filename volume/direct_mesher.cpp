@@ -1,0 +1,319 @@
+// The one CGAL-heavy translation unit of the direct pipeline (keeps builds short).
+#include "volume/direct_mesher.h"
+
+#include "core/errors.h"
+#include "core/face_key.h"
+#include "image/label_components.h"
+#include "volume/label_weights.h"
+#include "volume/mesh3_steps.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Image_3.h>
+#include <CGAL/ImageIO.h>
+#include <CGAL/Labeled_mesh_domain_3.h>
+#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
+#include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_domain_with_polyline_features_3.h>
+#include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/Mesh_3/polylines_to_protect.h>
+#include <CGAL/make_mesh_3.h>
+#include <CGAL/version.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+
+namespace tissuemesh {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Image_domain = CGAL::Labeled_mesh_domain_3<K>;
+// Polyline features: where tissue boundaries meet the image border (see seed/protect below).
+using Domain = CGAL::Mesh_domain_with_polyline_features_3<Image_domain>;
+using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
+using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
+using Criteria = CGAL::Mesh_criteria_3<Tr>;
+using Point = K::Point_3;
+
+// Image in CGAL's frame: axis-aligned, voxel (i,j,k) at (i*vx, j*vy, k*vz).
+// CGAL's labelled interpolation ignores the image translation, so the translation stays zero and
+// the physical placement (origin, direction) is applied when the mesh is extracted.
+CGAL::Image_3 make_cgal_image(const std::vector<std::uint8_t>& voxels, const std::array<int, 3>& dims,
+                              const Eigen::Vector3d& spacing) {
+  _image* im = _createImage(dims[0], dims[1], dims[2], 1, spacing[0], spacing[1], spacing[2], 1,
+                            WK_FIXED, SGN_UNSIGNED);
+  if (im == nullptr) throw MeshingError("cannot allocate the CGAL image");
+  std::memcpy(im->data, voxels.data(), voxels.size());
+  return CGAL::Image_3(im);
+}
+
+// Tissue ids as bytes (CGAL::Image_3 word type); ids were checked to be <= 255.
+std::vector<std::uint8_t> id_bytes(const LabelImage& ids) {
+  return std::vector<std::uint8_t>(ids.labels.begin(), ids.labels.end());
+}
+
+// Size field (mm): the base size (per tissue for cells) shrinks linearly to `refine_size` at the
+// refined tissue, approximated by a ball (centroid, radius of its farthest voxel) — exact enough
+// for a compact tumour and cheap enough to evaluate millions of times.
+struct SizeField {
+  typedef K::FT FT;
+  typedef K::Point_3 Point_3;
+  typedef Domain::Index Index;
+
+  double base = 1.0;
+  std::vector<double> per_tissue;  // index = tissue id; 0 = unused
+  bool refine = false;
+  Point_3 centre{0, 0, 0};
+  double ball_radius = 0.0, refine_size = 1.0, refine_radius = 1.0;
+
+  FT operator()(const Point_3& p, const int dim, const Index& index) const {
+    double size = base;
+    if (dim == 3) {
+      if (const auto* sub = boost::get<Domain::Subdomain_index>(&index)) {
+        if (*sub > 0 && static_cast<std::size_t>(*sub) < per_tissue.size()) size = per_tissue[*sub];
+      }
+    }
+    if (refine) {
+      const double d = std::max(0.0, std::sqrt(CGAL::squared_distance(p, centre)) - ball_radius);
+      size = std::min(size, refine_size + (size - refine_size) * std::min(1.0, d / refine_radius));
+    }
+    return size;
+  }
+};
+
+Point voxel_point(const std::array<int, 3>& ijk, const Eigen::Vector3d& spacing) {
+  return Point(ijk[0] * spacing[0], ijk[1] * spacing[1], ijk[2] * spacing[2]);
+}
+
+// True if `p` lies in the protecting ball of a feature vertex (weighted point): inserting it
+// there would hide the ball and break the protection.
+bool inside_protecting_ball(const Tr& tr, const Point& p) {
+  if (tr.dimension() < 3) {
+    for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v) {
+      const auto& wp = tr.point(v);
+      if (wp.weight() > 0 && CGAL::squared_distance(p, wp.point()) <= wp.weight()) return true;
+    }
+    return false;
+  }
+  // As CGAL's Triangulation_helpers::inside_protecting_balls: the nearest vertex in the power
+  // metric is the only ball that can contain p.
+  const Tr::Vertex_handle v = tr.nearest_power_vertex(p);
+  if (v == Tr::Vertex_handle() || tr.is_infinite(v)) return false;
+  const auto& wp = tr.point(v);
+  return wp.weight() > 0 && CGAL::squared_distance(p, wp.point()) <= wp.weight();
+}
+
+// Seeds surface points on every component (see header): from a voxel of the component walk along
+// each axis to the first voxel of another id; the segment between the two voxel centres crosses
+// the boundary, which CGAL's intersection oracle locates.
+std::size_t seed_components(C3t3& c3t3, const Domain& domain, const LabelImage& ids,
+                            const ComponentMap& comps, const Eigen::Vector3d& spacing) {
+  Tr& tr = c3t3.triangulation();
+  auto construct_intersection = domain.construct_intersection_object();
+  // Extra start voxels for large components: CGAL's own initialisation shoots ~20 rays.
+  std::vector<std::vector<std::array<int, 3>>> starts(comps.components.size());
+  std::vector<std::size_t> seen(comps.components.size(), 0);
+  for (std::size_t c = 0; c < comps.components.size(); ++c) starts[c].push_back(comps.components[c].seed);
+  for (int k = 0; k < ids.dims[2]; ++k)
+    for (int j = 0; j < ids.dims[1]; ++j)
+      for (int i = 0; i < ids.dims[0]; ++i) {
+        const std::int32_t c = comps.component_of_voxel[ids.index(i, j, k)];
+        if (c < 0) continue;
+        const std::size_t stride = std::max<std::size_t>(1, comps.components[c].voxels / 8);
+        if (++seen[c] % stride == 0 && starts[c].size() < 9) starts[c].push_back({i, j, k});
+      }
+  const int steps[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::size_t inserted = 0;
+  // Each boundary crossing is used once: starts on the same voxel line reach the same crossing,
+  // and two seeds a round-off apart would make near-flat tets that no optimiser removes.
+  std::set<std::pair<std::size_t, int>> used;
+  for (std::size_t c = 0; c < comps.components.size(); ++c) {
+    const int id = comps.components[c].tissue_id;
+    for (const auto& a : starts[c]) {
+      for (int dir = 0; dir < 6; ++dir) {
+        const int* st = steps[dir];
+        std::array<int, 3> last = a, b = a;
+        bool crossing = false;
+        while (true) {
+          b = {b[0] + st[0], b[1] + st[1], b[2] + st[2]};
+          if (b[0] < 0 || b[1] < 0 || b[2] < 0 || b[0] >= ids.dims[0] || b[1] >= ids.dims[1] ||
+              b[2] >= ids.dims[2])
+            break;  // the component reaches the image border this way: no crossing to seed
+          if (ids.at(b[0], b[1], b[2]) != id) {
+            crossing = true;
+            break;
+          }
+          last = b;
+        }
+        if (!crossing || !used.emplace(ids.index(last[0], last[1], last[2]), dir).second) continue;
+        // One voxel step: the labels differ at its two ends, so the oracle's bisection finds
+        // exactly this crossing.
+        const auto hit = construct_intersection(K::Segment_3(voxel_point(last, spacing), voxel_point(b, spacing)));
+        if (std::get<2>(hit) == 0) continue;
+        if (inside_protecting_ball(tr, std::get<0>(hit))) continue;
+        const Tr::Vertex_handle v = tr.insert(Tr::Weighted_point(std::get<0>(hit)));
+        if (v == Tr::Vertex_handle()) continue;
+        c3t3.set_dimension(v, 2);
+        c3t3.set_index(v, std::get<1>(hit));
+        ++inserted;
+      }
+    }
+  }
+  return inserted;
+}
+
+}  // namespace
+
+std::string cgal_version() { return CGAL_STR(CGAL_VERSION); }
+
+DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std::string>& names,
+                                    const DirectMeshParams& params, Progress& progress) {
+  if (names.size() > 255) throw InputError("at most 255 tissues can be meshed");
+  auto tissue_id = [&](const std::string& name, const std::string& key) {
+    for (std::size_t t = 0; t < names.size(); ++t)
+      if (names[t] == name) return static_cast<int>(t) + 1;
+    throw InputError("direct." + key + ": '" + name + "' is not a tissue of the tissue table");
+  };
+
+  DirectMeshResult result;
+  ComponentMap comps;
+  std::vector<std::uint8_t> bytes;
+  std::vector<std::uint8_t> weights;
+  {
+    auto stage = progress.stage("prepare image");
+    comps = find_components(ids);
+    result.image_components = comps.components.size();
+    bytes = id_bytes(ids);
+    if (params.smooth_boundaries) {
+      const double sigma = params.smoothing_sigma_mm > 0 ? params.smoothing_sigma_mm : 0.5 * ids.spacing.maxCoeff();
+      weights = label_weights(ids, sigma);
+    }
+    std::ostringstream note;
+    note << comps.components.size() << " tissue components in " << ids.voxel_count() << " voxels";
+    stage.note(note.str());
+  }
+
+  CGAL::Image_3 image = make_cgal_image(bytes, ids.dims, ids.spacing);
+  CGAL::Image_3 weight_image;
+  if (!weights.empty()) weight_image = make_cgal_image(weights, ids.dims, ids.spacing);
+  namespace p = CGAL::parameters;
+  // relative_error_bound: the boundary search stops at 1e-6 of the image diagonal (CGAL's weighted
+  // image example), far below a voxel; the default 1e-3 would be ~0.3 mm here.
+  auto domain_stage = std::make_unique<Progress::Stage>(progress, "domain and border features");
+  Domain domain = weights.empty()
+                      ? Domain::create_labeled_image_mesh_domain(image, p::relative_error_bound = 1e-6)
+                      : Domain::create_labeled_image_mesh_domain(image, p::weights = weight_image,
+                                                                 p::relative_error_bound = 1e-6);
+  {
+    // Where tissue boundaries meet the image border they form sharp creases and triple lines;
+    // unprotected, Delaunay refinement clusters thousands of near-flat tets there. CGAL 5.5
+    // computes these polylines on the image's bounding box; protecting balls keep them sharp.
+    std::vector<std::vector<Point>> polylines;
+    const std::vector<std::vector<Point>> none;
+    CGAL::polylines_to_protect<Point, std::uint8_t>(image, polylines, none.begin(), none.end());
+    domain.add_features(polylines.begin(), polylines.end());
+    domain_stage->note(std::to_string(polylines.size()) + " polylines protected on the image border");
+  }
+  domain_stage.reset();
+
+  SizeField facet_field, cell_field;
+  facet_field.base = params.facet_size_mm;
+  cell_field.base = params.cell_size_mm;
+  cell_field.per_tissue.assign(names.size() + 1, params.cell_size_mm);
+  for (const auto& [name, size] : params.cell_size_per_tissue_mm)
+    cell_field.per_tissue[tissue_id(name, "cell_size_per_tissue_mm")] = size;
+  if (!params.refine_tissue.empty()) {
+    const int rid = tissue_id(params.refine_tissue, "refine_tissue");
+    Eigen::Vector3d lo(1e300, 1e300, 1e300), hi(-1e300, -1e300, -1e300), sum(0, 0, 0);
+    std::size_t n = 0;
+    std::vector<Eigen::Vector3d> pts;
+    for (int k = 0; k < ids.dims[2]; ++k)
+      for (int j = 0; j < ids.dims[1]; ++j)
+        for (int i = 0; i < ids.dims[0]; ++i)
+          if (ids.at(i, j, k) == rid) {
+            const Eigen::Vector3d q(i * ids.spacing[0], j * ids.spacing[1], k * ids.spacing[2]);
+            pts.push_back(q);
+            sum += q;
+            ++n;
+          }
+    if (n > 0) {
+      const Eigen::Vector3d c = sum / static_cast<double>(n);
+      double r = 0.0;
+      for (const auto& q : pts) r = std::max(r, (q - c).norm());
+      for (SizeField* f : {&facet_field, &cell_field}) {
+        f->refine = true;
+        f->centre = Point(c[0], c[1], c[2]);
+        f->ball_radius = r;
+        f->refine_size = params.refine_size_mm;
+        f->refine_radius = params.refine_radius_mm;
+      }
+    }
+  }
+  Criteria criteria(p::edge_size = facet_field, p::facet_angle = params.facet_angle_deg, p::facet_size = facet_field,
+                    p::facet_distance = params.facet_distance_mm,
+                    p::cell_radius_edge_ratio = params.cell_radius_edge_ratio, p::cell_size = cell_field);
+
+  C3t3 c3t3;
+  {
+    auto stage = progress.stage("protect border features");
+    CGAL::Mesh_3::internal::init_c3t3_with_features(c3t3, domain, criteria);
+    stage.note(std::to_string(c3t3.triangulation().number_of_vertices()) + " protecting balls");
+  }
+  {
+    auto stage = progress.stage("seed components");
+    result.initial_points = seed_components(c3t3, domain, ids, comps, ids.spacing);
+    stage.note(std::to_string(result.initial_points) + " initial surface points");
+  }
+  mesh3::refine(c3t3, domain, criteria, progress);
+  mesh3::optimise(c3t3, domain, params.optimise, progress, result.warnings);
+
+  auto stage = progress.stage("extract mesh");
+  const Eigen::Matrix3d& D = ids.direction;
+  result.mesh = mesh3::cells(
+      c3t3, [&](double x, double y, double z) -> Eigen::Vector3d { return ids.origin + D * Eigen::Vector3d(x, y, z); },
+      D.determinant() < 0, names);
+  TetMesh& mesh = result.mesh;
+  result.repair = repair_slivers(mesh, params.optimise, result.warnings);
+
+  // Which image components are covered by tets of their tissue? A tet credits the component of
+  // the voxel under its centroid or, when that voxel has another tissue (the mesh boundary is
+  // smooth, the voxels are not), the nearest voxel of its own tissue among the 26 neighbours.
+  // The rest is reported by name, size and place.
+  std::vector<char> covered(comps.components.size(), 0);
+  const Eigen::Matrix3d to_index = ids.index_to_physical().inverse();
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int v : mesh.tets[t]) centroid += mesh.points[v] / 4.0;
+    const Eigen::Vector3d ijk = to_index * (centroid - ids.origin);
+    const int ci = static_cast<int>(std::lround(ijk[0])), cj = static_cast<int>(std::lround(ijk[1])),
+              ck = static_cast<int>(std::lround(ijk[2]));
+    double best = 1e300;
+    std::int32_t best_comp = -1;
+    for (int dk = -1; dk <= 1; ++dk)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int i = ci + di, j = cj + dj, k = ck + dk;
+          if (i < 0 || j < 0 || k < 0 || i >= ids.dims[0] || j >= ids.dims[1] || k >= ids.dims[2]) continue;
+          if (ids.at(i, j, k) != mesh.tissue_ids[t]) continue;
+          const double d = (Eigen::Vector3d(i, j, k) - ijk).squaredNorm();
+          if (d < best) {
+            best = d;
+            best_comp = comps.component_of_voxel[ids.index(i, j, k)];
+          }
+        }
+    if (best_comp >= 0) covered[best_comp] = 1;
+  }
+  for (std::size_t c = 0; c < comps.components.size(); ++c) {
+    if (covered[c]) continue;
+    const auto& cc = comps.components[c];
+    result.missed.push_back({names[cc.tissue_id - 1], cc.voxels, cc.voxels * ids.voxel_volume(), cc.centroid_mm});
+  }
+  stage.note(std::to_string(mesh.tets.size()) + " tets, " + std::to_string(mesh.points.size()) + " nodes");
+  return result;
+}
+
+}  // namespace tissuemesh

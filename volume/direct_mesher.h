@@ -1,0 +1,55 @@
+// Direct pipeline: CGAL Mesh_3 from a tissue-id image to one conforming multi-material TetMesh.
+//
+// Method: tissues that touch the image border end at the centres of the border voxels (CGAL
+// interpolates between voxel centres), where polylines are protected as features; boundaries
+// are smoothed by weighted labels (label_weights.h); every 6-connected component of every tissue gets initial surface points so
+// that no island is skipped (CGAL's random initialisation misses small parts, CGAL issues #93,
+// #923); Delaunay refinement with the criteria of DirectMeshParams and a size field that is finer
+// around `refine_tissue`; then optional Lloyd/ODT, sliver perturbation/exudation and the sliver
+// repairs of boundary_slivers.h and sliver_flips.h. All tets of the
+// result are positively oriented in physical LPS millimetres, even when the image direction matrix
+// is a reflection. Deterministic: the same image and parameters give the same mesh.
+#pragma once
+
+#include "core/label_image.h"
+#include "core/progress.h"
+#include "core/tet_mesh.h"
+#include "volume/direct_mesh_params.h"
+#include "volume/mesh3_optimisation.h"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace tissuemesh {
+
+/// A connected part of a tissue in the image that no tet of that tissue covers.
+struct MissedComponent {
+  std::string tissue;
+  std::size_t voxels = 0;
+  double volume_mm3 = 0.0;
+  Eigen::Vector3d centroid_mm{0, 0, 0};  ///< LPS
+};
+
+struct DirectMeshResult {
+  TetMesh mesh;
+  std::size_t image_components = 0;      ///< 6-connected components over all tissues
+  std::size_t initial_points = 0;        ///< surface points seeded before refinement
+  std::vector<MissedComponent> missed;   ///< components not represented (reported, never hidden)
+  SliverRepair repair;                   ///< what the sliver repairs did
+  /// Things the user must know, e.g. an optimiser stopped by its time limit (its result then
+  /// depends on machine speed, so repeated runs may differ).
+  std::vector<std::string> warnings;
+};
+
+/// `ids`: tissue ids 0..N (0 = outside) as made by TissueTable::to_tissue_ids; `tissue_names[i]`
+/// names id i+1. Throws InputError if a name in params (cell_size_per_tissue_mm, refine_tissue)
+/// is not a tissue, MeshingError if CGAL yields no tets.
+DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std::string>& tissue_names,
+                                    const DirectMeshParams& params, Progress& progress);
+
+/// "5.5.1" — the CGAL version this library was built with.
+std::string cgal_version();
+
+}  // namespace tissuemesh

@@ -1,0 +1,77 @@
+// The radius-edge ratio a triangle surface forces on every tet mesh that keeps its triangles as
+// faces: TetGen with -Y (volume/tetgen_mesher.h), and the mesh the surface was taken from
+// (quality/mesh_interfaces.h). Issue #6 asks TetGen's mesh for a ratio <= 2; this says how far
+// below that the input lets any such mesh go.
+//
+// Bound: let T be a triangle with smallest angle theta and shortest edge l (the edge opposite
+// theta). By the law of sines its circumradius is r = l / (2 sin theta). A tet with T as a face
+// has a circumsphere through T's three corners, so its circumradius R >= r, and its shortest edge
+// is at most l; hence R / shortest edge >= 1 / (2 sin theta). With -Y every input triangle is a
+// face of a kept tet (the tissue on one side of it at least), so the largest ratio of the mesh is
+// at least the largest 1 / (2 sin theta) over the triangles. A mesher that may split boundary
+// triangles (TetGen without -Y) is not bound by it.
+//
+// forced_radius_edge_ratio() is O(triangles). account_radius_edge_above() uses the bound to tell,
+// for a given mesh, the tets above a ratio that its surface is proven to force from the others.
+// Deterministic.
+#pragma once
+
+#include "core/tet_mesh.h"
+#include "core/tri_surface.h"
+
+#include <array>
+#include <cstddef>
+#include <limits>
+
+namespace tissuemesh {
+
+struct ForcedRadiusEdge {
+  /// Largest 1 / (2 sin theta_min) over the triangles: 0 for a surface without triangles,
+  /// +infinity when a triangle has zero area.
+  double ratio = 0.0;
+  /// The triangle that sets it (the first of equals): index into TriSurface::triangles (its
+  /// patch pair is labels[triangle]); -1 without triangles.
+  int triangle = -1;
+  /// That triangle's smallest interior angle, degrees; NaN without triangles.
+  double min_angle_deg = std::numeric_limits<double>::quiet_NaN();
+  /// Triangles whose own 1 / (2 sin theta_min) exceeds the `bound` given.
+  std::size_t triangles_above_bound = 0;
+};
+
+/// The bound of the header comment for `surface`, and how many of its triangles force a ratio
+/// above `bound` (e.g. tetgen.radius_edge_ratio). Throws InputError when the surface is invalid
+/// (TriSurface::validate).
+ForcedRadiusEdge forced_radius_edge_ratio(const TriSurface& surface, double bound);
+
+/// The tets of a mesh above a radius-edge bound, split by the cause the header comment proves:
+/// a tet with a face that is a surface triangle forcing more than the bound cannot meet it
+/// (forced; any mesh keeping that triangle has such a tet). For any other tet this bound proves
+/// nothing (unforced): it may be the mesher's doing, or still unavoidable under its constraints.
+struct RadiusEdgeAccount {
+  /// Tets whose TetShape::radius_edge_ratio exceeds the bound, flat tets included
+  /// (TissueQuality::tets_radius_edge_above_2 is this count at 2).
+  std::size_t above = 0;
+  std::size_t forced = 0;    ///< of them, those with a face that forces more than the bound
+  std::size_t unforced = 0;  ///< above - forced
+  /// Largest ratio among the unforced tets (0 when there are none; +infinity for a flat one).
+  double max_unforced_ratio = 0.0;
+  int max_unforced_tet = -1;  ///< index into mesh.tets of that tet, -1 when there is none
+  /// The unforced tets by how many of their nodes are corners of surface triangles (0..4). On the
+  /// phantom, TetGen -Y's unforced tets all have 2 or more: they span thin layers between surface
+  /// nodes. The likely reason (not checked here): TetGen 1.5 splits a bad tet at its
+  /// circumcentre and rejects that point when it encroaches a triangle -Y keeps (or, with -m, a
+  /// vertex's protecting ball), and inside a thin layer it nearly always does.
+  std::array<std::size_t, 5> unforced_by_surface_nodes{};
+};
+
+/// Accounts for the tets of `mesh` above `bound` against the triangles of `surface` (see
+/// RadiusEdgeAccount). A surface triangle is recognised as a tet face by its corners' coordinates,
+/// compared exactly: the meshes this is for (TetGen's -Y mesh of the surface, the mesh the surface
+/// was taken from) keep the surface points as nodes, bit for bit. A triangle whose corners are not
+/// all nodes of `mesh` forces nothing there. Mesh nodes at the same coordinates (a mesh that is
+/// not conforming) are not told apart: a surface point goes to the first of them. Throws
+/// InputError when the surface or the mesh is invalid, or when the mesh has kMaxFaceKeyNodes
+/// (core/face_key.h) nodes or more. Deterministic; O(tets + (nodes + surface points) log nodes).
+RadiusEdgeAccount account_radius_edge_above(const TetMesh& mesh, const TriSurface& surface, double bound);
+
+}  // namespace tissuemesh

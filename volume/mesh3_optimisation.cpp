@@ -1,0 +1,56 @@
+#include "volume/mesh3_optimisation.h"
+
+#include "core/face_key.h"
+
+namespace tissuemesh {
+
+void Mesh3Optimisation::read(YamlMap& m) {
+  lloyd = m.boolean("lloyd", lloyd);
+  odt = m.boolean("odt", odt);
+  optimise_time_limit_s = m.positive("optimise_time_limit_s", optimise_time_limit_s);
+  perturb = m.boolean("perturb", perturb);
+  exude = m.boolean("exude", exude);
+  sliver_bound_deg = m.in_range("sliver_bound_deg", sliver_bound_deg, 0.0, 60.0);
+  sliver_time_limit_s = m.positive("sliver_time_limit_s", sliver_time_limit_s);
+  remove_boundary_slivers_deg = m.in_range("remove_boundary_slivers_deg", remove_boundary_slivers_deg, 0.0, 30.0);
+  flip_slivers_below_deg = m.in_range("flip_slivers_below_deg", flip_slivers_below_deg, 0.0, 60.0);
+  interface_flips = m.boolean("interface_flips", interface_flips);
+  smooth_slivers_below_deg = m.in_range("smooth_slivers_below_deg", smooth_slivers_below_deg, 0.0, 60.0);
+  smooth_near_planar_deg = m.in_range("smooth_near_planar_deg", smooth_near_planar_deg, 0.0, 30.0);
+}
+
+void Mesh3Optimisation::emit(YAML::Emitter& out) const {
+  out << YAML::Key << "lloyd" << YAML::Value << lloyd;
+  out << YAML::Key << "odt" << YAML::Value << odt;
+  out << YAML::Key << "optimise_time_limit_s" << YAML::Value << optimise_time_limit_s;
+  out << YAML::Key << "perturb" << YAML::Value << perturb;
+  out << YAML::Key << "exude" << YAML::Value << exude;
+  out << YAML::Key << "sliver_bound_deg" << YAML::Value << sliver_bound_deg;
+  out << YAML::Key << "sliver_time_limit_s" << YAML::Value << sliver_time_limit_s;
+  out << YAML::Key << "remove_boundary_slivers_deg" << YAML::Value << remove_boundary_slivers_deg;
+  out << YAML::Key << "flip_slivers_below_deg" << YAML::Value << flip_slivers_below_deg;
+  out << YAML::Key << "interface_flips" << YAML::Value << interface_flips;
+  out << YAML::Key << "smooth_slivers_below_deg" << YAML::Value << smooth_slivers_below_deg;
+  out << YAML::Key << "smooth_near_planar_deg" << YAML::Value << smooth_near_planar_deg;
+}
+
+SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings,
+                            const SurfaceProjector& onto_surface) {
+  SliverRepair r;
+  const bool wanted = options.remove_boundary_slivers_deg > 0 || options.flip_slivers_below_deg > 0 ||
+                      options.smooth_slivers_below_deg > 0;
+  if (wanted && mesh.points.size() >= kMaxFaceKeyNodes) {
+    warnings.push_back("sliver repair skipped: the mesh has more than 2,097,151 nodes");
+    return r;
+  }
+  if (options.remove_boundary_slivers_deg > 0)
+    r.boundary_slivers = remove_boundary_slivers(mesh, options.remove_boundary_slivers_deg);
+  if (options.flip_slivers_below_deg > 0)
+    r.sliver_flips = flip_slivers(mesh, options.flip_slivers_below_deg, options.interface_flips);
+  if (options.smooth_slivers_below_deg > 0)
+    r.sliver_smoothing = smooth_slivers(mesh, options.smooth_slivers_below_deg, options.smooth_near_planar_deg,
+                                        onto_surface);
+  return r;
+}
+
+}  // namespace tissuemesh

@@ -1,0 +1,32 @@
+#include "volume/volume_mesh_params.h"
+
+namespace tissuemesh {
+
+VolumeMeshParams VolumeMeshParams::from_yaml(YamlMap& m) {
+  VolumeMeshParams p;
+  p.surface_edge_factor = m.in_range("surface_edge_factor", p.surface_edge_factor, 0.1, 10.0);
+  p.cell_edge_factor = m.in_range("cell_edge_factor", p.cell_edge_factor, 0.1, 100.0);
+  p.feature_angle_deg = m.in_range("feature_angle_deg", p.feature_angle_deg, 1.0, 180.0);
+  // Bounds: CGAL's refinement is only proven to terminate for facet angle <= 30 degrees and
+  // radius-edge ratio >= 2 (CGAL Mesh_3 manual).
+  p.facet_angle_deg = m.in_range("facet_angle_deg", p.facet_angle_deg, 0.0, 30.0);
+  p.facet_distance_mm = m.in_range("facet_distance_mm", p.facet_distance_mm, 0.0, 1e6);
+  p.cell_radius_edge_ratio = m.in_range("cell_radius_edge_ratio", p.cell_radius_edge_ratio, 2.0, 100.0);
+  p.optimise.read(m);
+  m.finish();
+  return p;
+}
+
+void VolumeMeshParams::to_yaml(YAML::Emitter& out) const {
+  out << YAML::BeginMap;
+  out << YAML::Key << "surface_edge_factor" << YAML::Value << surface_edge_factor;
+  out << YAML::Key << "cell_edge_factor" << YAML::Value << cell_edge_factor;
+  out << YAML::Key << "feature_angle_deg" << YAML::Value << feature_angle_deg;
+  out << YAML::Key << "facet_angle_deg" << YAML::Value << facet_angle_deg;
+  out << YAML::Key << "facet_distance_mm" << YAML::Value << facet_distance_mm;
+  out << YAML::Key << "cell_radius_edge_ratio" << YAML::Value << cell_radius_edge_ratio;
+  optimise.emit(out);
+  out << YAML::EndMap;
+}
+
+}  // namespace tissuemesh

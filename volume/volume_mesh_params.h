@@ -1,0 +1,39 @@
+// Parameters of the surface pipeline's volume mesher (config section `volume:`; issue #6): CGAL
+// Mesh_3 from the remeshed multi-material surface (volume/complex_mesher.h).
+//
+// Sizes follow the surface's own size field h(x) = L s(x) (mm; L = the remesher's edge length,
+// s = the approach grading, 1 without it), so the volume mesh is as fine as the surface where the
+// surface is fine. Meaning of the CGAL criteria: CGAL Mesh_3 manual, "Mesh_criteria_3" (and
+// volume/direct_mesh_params.h).
+#pragma once
+
+#include "core/yaml_map.h"
+#include "volume/mesh3_optimisation.h"
+
+namespace tissuemesh {
+
+struct VolumeMeshParams {
+  /// Target surface (and junction) edge length relative to h(x): the facet size criterion is the
+  /// circumradius of the equilateral triangle of that edge, the feature edge size the edge itself.
+  double surface_edge_factor = 1.0;
+  /// Largest tet relative to h(x): the cell size criterion is the circumradius of the regular tet
+  /// whose edge is cell_edge_factor * h(x).
+  double cell_edge_factor = 1.5;
+  /// Edges where a patch folds by more than this (degrees between the normals of its two
+  /// triangles) are protected like the junction curves, so creases stay sharp; 180 = junction
+  /// curves only (the default: on a coarse remeshed surface many edges fold by more than 60
+  /// degrees, and their protecting balls crowd into sub-0.1 mm tets; measured at 2.1K).
+  double feature_angle_deg = 180.0;
+  double facet_angle_deg = 25.0;        ///< min surface triangle angle, degrees (<= 30 terminates)
+  /// Max distance between a surface triangle of the tet mesh and the input surface, mm; 0 = a
+  /// tenth of the input surface's mean edge length.
+  double facet_distance_mm = 0.0;
+  double cell_radius_edge_ratio = 2.0;  ///< max tet circumradius / shortest edge (>= 2 terminates)
+  Mesh3Optimisation optimise;           ///< optimisation and sliver repair (mesh3_optimisation.h)
+
+  /// Reads the `volume:` map (unknown keys are errors; values range-checked with the key named).
+  static VolumeMeshParams from_yaml(YamlMap& map);
+  void to_yaml(YAML::Emitter& out) const;
+};
+
+}  // namespace tissuemesh
