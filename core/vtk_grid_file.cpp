@@ -2,9 +2,12 @@
 
 #include "core/errors.h"
 
+#include <algorithm>
+
 #include <vtkCommand.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkStringArray.h>
 #include <vtkXMLPolyDataWriter.h>
@@ -27,6 +30,7 @@ void write_xml(Data& data, const std::vector<std::string>& tissue_names, const s
   add_string_field(data, "tissue_names", tissue_names);
   add_string_field(data, "coordinate_system", {"LPS"});
   add_string_field(data, "length_unit", {"mm"});
+  add_tissue_tags(data, tissue_names);
   vtkNew<Writer> writer;
   writer->SetFileName(path.c_str());
   writer->SetInputData(&data);
@@ -44,12 +48,52 @@ void write_xml(Data& data, const std::vector<std::string>& tissue_names, const s
 }
 }  // namespace
 
-void add_string_field(vtkDataObject& grid, const char* name, const std::vector<std::string>& values) {
-  vtkNew<vtkStringArray> a;
+// Text as VTK component names: meshio (5.x) refuses String arrays anywhere in a VTU, while VTK's
+// XML writer and reader keep component names (ComponentName0, ...) on any array, and ParaView's
+// spreadsheet shows them as column headers. Value i + 1 sits under the name of value i, so the
+// tissue_names array also maps each tissue id to its name.
+void add_string_field(vtkDataObject& data, const char* name, const std::vector<std::string>& values) {
+  vtkNew<vtkIntArray> a;
   a->SetName(name);
-  a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
-  for (std::size_t i = 0; i < values.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), values[i]);
-  grid.GetFieldData()->AddArray(a);
+  a->SetNumberOfComponents(static_cast<int>(std::max<std::size_t>(values.size(), 1)));
+  a->SetNumberOfTuples(values.empty() ? 0 : 1);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    a->SetComponentName(static_cast<vtkIdType>(i), values[i].c_str());
+    a->SetTypedComponent(0, static_cast<int>(i), static_cast<int>(i + 1));
+  }
+  data.GetFieldData()->AddArray(a);
+}
+
+std::vector<std::string> read_string_field(vtkDataObject& data, const char* name) {
+  vtkAbstractArray* a = data.GetFieldData()->GetAbstractArray(name);
+  std::vector<std::string> values;
+  if (a == nullptr) return values;
+  if (auto* text = vtkStringArray::SafeDownCast(a)) {  // files written before the meshio-readable form
+    for (vtkIdType i = 0; i < text->GetNumberOfValues(); ++i) values.push_back(text->GetValue(i));
+    return values;
+  }
+  if (a->GetNumberOfTuples() != 1) return values;
+  for (int c = 0; c < a->GetNumberOfComponents(); ++c) {
+    const char* component = a->GetComponentName(c);
+    values.push_back(component != nullptr ? component : "");
+  }
+  return values;
+}
+
+// meshio's convention for named regions (its Gmsh reader and writer): field_data[name] = [tag,
+// dimension]. A tissue name that is already an array of the file would replace it, so it is refused.
+void add_tissue_tags(vtkDataObject& data, const std::vector<std::string>& tissue_names) {
+  for (std::size_t t = 0; t < tissue_names.size(); ++t) {
+    const std::string& name = tissue_names[t];
+    if (data.GetFieldData()->GetAbstractArray(name.c_str()) != nullptr)
+      throw InputError("tissue name '" + name + "' is also the name of a field-data array of the output file; rename the tissue");
+    vtkNew<vtkIntArray> a;
+    a->SetName(name.c_str());
+    a->SetNumberOfValues(2);
+    a->SetValue(0, static_cast<int>(t + 1));
+    a->SetValue(1, 3);
+    data.GetFieldData()->AddArray(a);
+  }
 }
 
 void write_grid_vtu(vtkUnstructuredGrid& grid, const std::vector<std::string>& tissue_names, const std::string& path) {

@@ -12,7 +12,6 @@
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
-#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
@@ -95,11 +94,8 @@ TetMesh read_vtu(const std::string& path) {
     mesh.tissue_ids[c] = static_cast<int>(ids->GetTuple1(c));
     max_id = std::max(max_id, mesh.tissue_ids[c]);
   }
-  auto* names = vtkStringArray::SafeDownCast(grid->GetFieldData()->GetAbstractArray("tissue_names"));
-  if (names != nullptr) {
-    for (vtkIdType i = 0; i < names->GetNumberOfValues(); ++i)
-      mesh.tissue_names.push_back(names->GetValue(i));
-  } else {
+  mesh.tissue_names = read_string_field(*grid, "tissue_names");
+  if (mesh.tissue_names.empty()) {
     for (int id = 1; id <= max_id; ++id) mesh.tissue_names.push_back("tissue_" + std::to_string(id));
   }
   mesh.validate(path);

@@ -16,7 +16,6 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
-#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
@@ -67,8 +66,10 @@ vtkSmartPointer<vtkUnstructuredGrid> read_grid(const std::filesystem::path& path
 }
 
 std::string string_field(vtkUnstructuredGrid* grid, const char* name) {
-  auto* a = vtkStringArray::SafeDownCast(grid->GetFieldData()->GetAbstractArray(name));
-  return a && a->GetNumberOfValues() == 1 ? a->GetValue(0) : "<missing>";
+  // A text field: one Int32 tuple whose component name is the value (meshio reads no String arrays).
+  vtkDataArray* a = grid->GetFieldData()->GetArray(name);
+  return a && a->GetNumberOfTuples() == 1 && a->GetNumberOfComponents() == 1 && a->GetComponentName(0)
+             ? a->GetComponentName(0) : "<missing>";
 }
 
 /// Every value of every point, cell and field data array and every coordinate is finite.

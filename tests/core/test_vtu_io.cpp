@@ -12,6 +12,7 @@
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
+#include <vtkXMLUnstructuredGridWriter.h>
 
 #include <fstream>
 
@@ -50,12 +51,19 @@ TEST(VtuIo, PlainVtkReaderSeesTissueIdsAndNames) {
   EXPECT_EQ(g->GetCellType(1), 10);  // VTK_TETRA
   EXPECT_EQ(g->GetCellData()->GetArray("tissue_id")->GetTuple1(1), 2.0);
   EXPECT_EQ(g->GetCellData()->GetArray("quality")->GetTuple1(0), 0.5);
-  auto* names = vtkStringArray::SafeDownCast(g->GetFieldData()->GetAbstractArray("tissue_names"));
+  // Text as component names of Int32 arrays, and meshio's per-tissue [tag, dimension] arrays.
+  vtkDataArray* names = g->GetFieldData()->GetArray("tissue_names");
   ASSERT_NE(names, nullptr);
-  EXPECT_EQ(names->GetValue(1), "tumor");
-  auto* frame = vtkStringArray::SafeDownCast(g->GetFieldData()->GetAbstractArray("coordinate_system"));
+  ASSERT_EQ(names->GetNumberOfComponents(), 2);
+  EXPECT_STREQ(names->GetComponentName(1), "tumor");
+  EXPECT_EQ(names->GetComponent(0, 1), 2.0);
+  vtkDataArray* tumor = g->GetFieldData()->GetArray("tumor");
+  ASSERT_NE(tumor, nullptr);
+  EXPECT_EQ(tumor->GetTuple1(0), 2.0);
+  EXPECT_EQ(tumor->GetTuple1(1), 3.0);
+  vtkDataArray* frame = g->GetFieldData()->GetArray("coordinate_system");
   ASSERT_NE(frame, nullptr);
-  EXPECT_EQ(frame->GetValue(0), "LPS");
+  EXPECT_STREQ(frame->GetComponentName(0), "LPS");
 }
 
 TEST(VtuIo, WritingIsDeterministic) {
@@ -90,4 +98,38 @@ TEST(VtuIo, InvalidMeshIsRefusedBeforeWriting) {
   m.tissue_ids[1] = 3;  // no such tissue
   EXPECT_THROW(write_vtu(m, path.string()), InputError);
   EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+TEST(VtuIo, TissueNamedLikeAFieldArrayIsRefusedBeforeWriting) {
+  const auto path = test::scratch_dir() / "clash.vtu";
+  TetMesh m = two_tets();
+  m.tissue_names[1] = "length_unit";
+  try {
+    write_vtu(m, path.string());
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'length_unit'"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+TEST(VtuIo, ReadsTissueNamesOfOlderFilesWrittenAsStringArrays) {
+  // Files written before the meshio-readable form carry tissue_names as a VTK string array.
+  const auto path = (test::scratch_dir() / "old.vtu").string();
+  write_vtu(two_tets(), path);
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkUnstructuredGrid* g = reader->GetOutput();
+  g->GetFieldData()->RemoveArray("tissue_names");
+  vtkNew<vtkStringArray> names;
+  names->SetName("tissue_names");
+  names->InsertNextValue("fat");
+  names->InsertNextValue("lesion");
+  g->GetFieldData()->AddArray(names);
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(g);
+  ASSERT_EQ(writer->Write(), 1);
+  EXPECT_EQ(read_vtu(path).tissue_names, (std::vector<std::string>{"fat", "lesion"}));
 }

@@ -15,7 +15,6 @@
 #include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
-#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
@@ -41,9 +40,14 @@ Model model_of(ElementOrder order) {
 
 std::vector<std::string> strings(vtkUnstructuredGrid* grid, const char* name) {
   std::vector<std::string> out;
-  auto* a = vtkStringArray::SafeDownCast(grid->GetFieldData()->GetAbstractArray(name));
-  if (a == nullptr) return {"<missing>"};
-  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i) out.push_back(a->GetValue(i));
+  // Text fields are Int32 arrays of one tuple whose component names are the values (meshio reads
+  // no String arrays); component i holds i + 1.
+  vtkDataArray* a = grid->GetFieldData()->GetArray(name);
+  if (a == nullptr || a->GetNumberOfTuples() != 1) return {"<missing>"};
+  for (int c = 0; c < a->GetNumberOfComponents(); ++c) {
+    out.push_back(a->GetComponentName(c) ? a->GetComponentName(c) : "<unnamed>");
+    EXPECT_EQ(a->GetComponent(0, c), c + 1) << name;
+  }
   return out;
 }
 
@@ -94,6 +98,13 @@ void check_vtu_round_trip(ElementOrder order) {
       ASSERT_EQ(a->GetTuple1(i), members.count(static_cast<int>(i)) ? 1.0 : 0.0) << s.name << " node " << i;
   }
   EXPECT_EQ(strings(grid, "tissue_names"), m.tissue_names);
+  for (std::size_t t = 0; t < m.tissue_names.size(); ++t) {  // meshio's name -> [tag, dimension]
+    vtkDataArray* tag = grid->GetFieldData()->GetArray(m.tissue_names[t].c_str());
+    ASSERT_NE(tag, nullptr) << m.tissue_names[t];
+    ASSERT_EQ(tag->GetNumberOfTuples(), 2);
+    EXPECT_EQ(tag->GetTuple1(0), static_cast<double>(t + 1));
+    EXPECT_EQ(tag->GetTuple1(1), 3.0);
+  }
   EXPECT_EQ(strings(grid, "material_laws"), (std::vector<std::string>{"neo-hookean", "mooney-rivlin", "mooney-rivlin"}));
   EXPECT_EQ(strings(grid, "coordinate_system"), std::vector<std::string>{"LPS"});
   EXPECT_EQ(strings(grid, "length_unit"), std::vector<std::string>{"mm"});
