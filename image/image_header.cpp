@@ -1,3 +1,7 @@
+// Why: VTK 9.1's readers drop or guess parts of the geometry (vtkNrrdReader keeps only the lengths
+// of `space directions`, treats a fast axis of <= 9 voxels as vector components and flips rows for
+// LAS space; vtkMetaImageReader ignores TransformMatrix), so the headers are parsed here and VTK
+// is trusted with the voxel bytes only.
 #include "image/image_header.h"
 
 #include "core/errors.h"

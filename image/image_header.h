@@ -1,9 +1,6 @@
-// Text-header parsers for the NRRD (.nrrd, .nhdr) and MetaImage (.mha, .mhd) label-image formats.
-//
-// image_io.cpp reads the voxel bytes through VTK, but VTK 9.1's readers drop or guess parts of the
-// geometry (vtkNrrdReader keeps only the lengths of `space directions`, treats a fast axis of <= 9
-// voxels as vector components and flips rows for LAS space; vtkMetaImageReader ignores
-// TransformMatrix). These parsers are the authority for geometry, voxel type and data layout.
+// Text-header parsers for the NRRD (.nrrd, .nhdr) and MetaImage (.mha, .mhd) label-image formats:
+// the authority for geometry, voxel type and data layout (image/image_io.cpp reads only the voxel
+// bytes through VTK).
 //
 // Everything is converted to the toolkit's convention (core/label_image.h): millimetres, patient
 // LPS, `origin` = centre of voxel (0,0,0), `direction` columns = unit LPS vectors of the i, j, k

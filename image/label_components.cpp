@@ -1,3 +1,6 @@
+// Why: CGAL Mesh_3 finds a subdomain only if an initial point lands on its surface, so small
+// isolated parts (FGT islands, tumour satellites) are silently left out unless every component
+// gets seeds. The same components let the report name any part that did not make it into the mesh.
 #include "image/label_components.h"
 
 #include <algorithm>

@@ -1,8 +1,6 @@
-// Connected components of every tissue in a tissue-id image (6-connectivity).
-//
-// Why: CGAL Mesh_3 finds a subdomain only if an initial point lands on its surface, so small
-// isolated parts (FGT islands, tumor satellites) are silently left out unless every component gets
-// seeds. The same components let the report name any part that did not make it into the mesh.
+// Connected components of every tissue in a tissue-id image (6-connectivity): a boundary seed
+// voxel, bounding box and centroid per component, for seeding every component of a volume mesher
+// and for naming the parts missing from a mesh. Deterministic.
 #pragma once
 
 #include "core/label_image.h"

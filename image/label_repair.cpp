@@ -1,3 +1,13 @@
+// Why: two voxels of a tissue touching only along an edge or at a corner (or two voxels of the
+// complement pinched by the tissue) would give edges shared by four triangles of one tissue or
+// vertices joining two sheets. Unrestricted fixes can undo each other; here every change raises a
+// voxel's region id, so the repair terminates (at most as many changes per voxel as there are
+// regions):
+//   - a region split inside a block is bridged by a lower-labelled voxel touching it, or else its
+//     smallest piece joins its highest neighbouring region;
+//   - a region pinching its complement gives one voxel to a higher neighbouring region, or else
+//     the smallest (lower-labelled) piece of the complement is filled with the region.
+// Passes repeat until none changes a voxel.
 #include "image/label_repair.h"
 
 #include "core/errors.h"

@@ -1,20 +1,13 @@
-// Repair of non-manifold voxel configurations before surface extraction (issue #5).
+// Repair of non-manifold voxel configurations before surface extraction.
 //
-// The boundary of a union of voxels is a 2-manifold exactly when the set is "well-composed"
-// (Latecki 1997): at every lattice point (voxel corner), both the set and its complement are
-// face-connected inside the 2x2x2 block of voxels around it. Two voxels of a tissue touching only
-// along an edge or at a corner (or two voxels of the complement pinched by the tissue) break it and
-// would give edges shared by four triangles of one tissue or vertices joining two sheets. This pass
-// makes every region (tissue ids and 0 = outside, with the image padded by outside) well-composed by
-// relabelling voxels, scanning blocks in a fixed order (deterministic). Every change raises a
-// voxel's region id (outside = 0 never grows), so the repair terminates (at most as many changes
-// per voxel as there are regions) where unrestricted fixes can undo each other:
-//   - a region split inside a block is bridged by a lower-labelled voxel touching it, or else its
-//     smallest piece joins its highest neighbouring region;
-//   - a region pinching its complement gives one voxel to a higher neighbouring region, or else
-//     the smallest (lower-labelled) piece of the complement is filled with the region.
-// Passes repeat until none changes a voxel. Throws MeshingError when a defect remains that no
-// such change can fix (only padding voxels involved) or `max_passes` is reached.
+// The boundary of a union of voxels is a 2-manifold exactly when the set is well-composed
+// (Latecki, "3D well-composed pictures", Graphical Models and Image Processing 59, 1997): at every
+// lattice point (voxel corner), both the set and its complement are face-connected inside the
+// 2x2x2 block of voxels around it. make_well_composed relabels voxels until every region (tissue
+// ids and 0 = outside, the image padded by outside) is well-composed. Every change raises a
+// voxel's region id, so outside (0) never grows. Deterministic (blocks scanned in a fixed order).
+// Throws MeshingError when a defect remains that no such change can fix (only padding voxels
+// involved) or `max_passes` is reached.
 #pragma once
 
 #include "core/label_image.h"

@@ -95,7 +95,6 @@ void phantom_params_to_yaml(const PhantomParams& params, YAML::Emitter& out);
 /// Generates the phantom (labels are PhantomLabel values). Deterministic: the same parameters
 /// give the same image bit for bit. Throws InputError naming the key if a parameter is out of
 /// bounds, or naming fgt_islands if that many islands do not fit in the breast fat.
-/// About 0.3 s single-threaded for the defaults.
 LabelImage make_breast_phantom(const PhantomParams& params);
 
 }  // namespace tissuemesh

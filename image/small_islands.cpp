@@ -1,3 +1,8 @@
+// Why: a tissue component of a few voxels (segmentation noise, e.g. one fat voxel inside glandular
+// tissue) becomes a closed surface of its own. The remesher cannot collapse a closed component
+// below a tetrahedron, so it survives as a pocket of edges far shorter than the mesh's, and every
+// tet around it is badly shaped: such pockets set the worst radius-edge ratios of both volume
+// meshers. Nothing that small is resolved by the mesh.
 #include "image/small_islands.h"
 
 #include "image/label_components.h"

@@ -1,16 +1,10 @@
-// Absorption of sub-resolution islands before surface extraction (issue #5; it serves #6).
+// Absorption of sub-resolution islands before surface extraction.
 //
-// Why: a tissue component of a few voxels (segmentation noise, e.g. one fat voxel inside glandular
-// tissue) becomes a closed surface of its own. The remesher cannot collapse a closed component
-// below a tetrahedron, so it survives as a pocket with 0.25 mm edges inside a mesh of 3.5 mm
-// edges, and every tet around it is badly shaped: on the default phantom such pockets set the
-// worst radius-edge ratios of both volume meshers. Nothing that small is resolved by the mesh.
-//
-// Rule: every 6-connected component of a tissue (image/label_components.h) with fewer than
-// `min_voxels` voxels takes the region most of its face neighbours belong to (ties: the lowest id;
-// the image border counts as outside, 0). Components are visited in find_components' order and
-// relabelled in place; passes repeat (at most 10) until none is left, so an island inside another
-// small island ends with the region around both. Cavities of outside (id 0) are not touched.
+// Every 6-connected component of a tissue (image/label_components.h) with fewer than `min_voxels`
+// voxels takes the region most of its face neighbours belong to (ties: the lowest id; the image
+// border counts as outside, 0). Components are visited in find_components' order and relabelled
+// in place; passes repeat (at most 10) until none is left, so an island inside another small
+// island ends with the region around both. Cavities of outside (id 0) are not touched.
 // Deterministic.
 #pragma once
 

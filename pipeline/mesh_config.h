@@ -9,7 +9,7 @@
 //   approach: {...}             # see surface/approach_params.h (pipeline: surface)
 //   volume: {...}               # see volume/volume_mesh_params.h (pipeline: surface)
 //   tetgen: {...}               # see volume/tetgen_params.h (check --tetgen)
-//   phantom: {...}              # optional: the phantom `tissuemesh demo` generates (phantom.h)
+//   phantom: {...}              # optional: the phantom `tissuemesh demo` generates (image/phantom.h)
 //
 // Unknown keys anywhere are errors naming the file and key path. `to_yaml()` prints the effective
 // config (every key with its value, defaults filled in) for --print-config and the run record.

@@ -170,9 +170,10 @@ std::string table1_row(const char* name, const SurfaceQuality& q) {
          fmt("  %7.4f  %6.4f  %6.4f", q.p30_percent, q.q_average, q.q_min) + fmt("  %14.3f\n", q.mean_edge_mm);
 }
 
-// The paper's Table 2: vertices and cells of each tissue after each step (1 extracted surface,
-// 2 remeshed surface, 3 tet mesh), plus a row for the whole complex. A surface vertex on an
-// interface counts in both tissues, as in the paper; the whole-complex row counts it once.
+// Table 2 of Alqaoud et al. (see mesh_report.h): vertices and cells of each tissue after each step
+// (1 extracted surface, 2 remeshed surface, 3 tet mesh), plus a row for the whole complex. A surface
+// vertex on an interface counts in both tissues, as in the paper; the whole-complex row counts it
+// once.
 struct StepCounts {
   std::size_t vertices = 0, cells = 0;
 };

@@ -1,6 +1,7 @@
-// The surface pipeline's job (issues #5, #6): label image + config -> multi-material surface with
-// its checks and quality (the seed paper's Tables 1 and 2 and per-tissue volume against voxel
-// volume) -> tet mesh of that surface (volume/complex_mesher.h) with its quality and conformity.
+// The surface pipeline's job: label image + config -> multi-material surface with its checks and
+// quality (Tables 1 and 2 of Alqaoud et al., "Multi-material, approach-guided,
+// controlled-resolution breast meshing", and per-tissue volume against voxel volume) -> tet mesh
+// of that surface (volume/complex_mesher.h) with its quality and conformity.
 // The volume mesher's size field is the surface's: h(x) = L s(x) with L the remesher's edge length
 // (the mean edge of the extracted surface without remeshing) and s the approach grading (1 without
 // it). Nothing is printed; stages go through `progress`.

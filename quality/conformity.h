@@ -1,13 +1,9 @@
 // Conformity of a multi-material tetrahedral mesh: is it one valid, conforming FE mesh?
 //
-// A solver needs every interior face shared by exactly two tets, no node duplicated at one
-// position (a duplicate silently cuts the body along the faces that use one copy or the other),
-// no unused nodes, no inverted or degenerate tets, and a closed 2-manifold boundary surface. The
-// check also counts faces between each pair of tissues, which tells whether shared tissue
-// boundaries were stored once (the multi-material surface of DESIGN.md) or meshed twice.
-//
-// Cost: O(n log n) in tets and nodes (face keys bucketed by node, boundary edges and node cells
-// sorted); a 300K-tet mesh takes about 0.1-0.2 s. Deterministic.
+// Checks that every interior face is shared by exactly two tets, no node is duplicated at one
+// position, no node is unused, no tet is inverted or degenerate, and the boundary surface is a
+// closed 2-manifold; also counts the faces between each pair of tissues. The invariants are those
+// of docs/verification.md ("Mesh invariants"). O(n log n) in tets and nodes. Deterministic.
 #pragma once
 
 #include "core/tet_mesh.h"

@@ -1,17 +1,12 @@
 // Element quality of a multi-material tetrahedral mesh, per tissue and in total.
 //
 // Shape measures follow the usual definitions (Shewchuk, "What is a good linear finite element?",
-// 2002): the six interior dihedral angles, the normalised radius ratio 3 r / R (inradius over
-// circumradius, 1 for the regular tetrahedron, 0 for a degenerate one; Gmsh calls it gamma), and
-// Gmsh's signed inverse condition number SICN (see TetShape::sicn), and TetGen's radius-edge ratio
-// (circumradius over shortest edge, see TetShape::radius_edge_ratio). Small dihedral angles
-// spoil the conditioning of the stiffness matrix, angles near 180 degrees spoil interpolation, so
-// both ends of the angle range are reported. Volume fidelity against a reference (e.g. the voxel
-// volume of each tissue) is reported next to the shape measures because a mesher that loses thin
-// tissue silently is the failure users care about most (DESIGN.md).
+// 2002): the six interior dihedral angles, the normalised radius ratio 3 r / R (Gmsh's gamma),
+// Gmsh's signed inverse condition number SICN and TetGen's radius-edge ratio (see TetShape).
+// Volume fidelity is measured against a reference volume per tissue (e.g. its voxel volume).
 //
-// Units: lengths in mm, volumes in mm^3, angles in degrees. Everything is deterministic: the
-// per-tet loop runs serially in tet order, O(n), about 0.5 us per tet.
+// Units: lengths in mm, volumes in mm^3, angles in degrees. O(n) in tets. Deterministic: the
+// per-tet loop runs serially in tet order.
 #pragma once
 
 #include "core/tet_mesh.h"

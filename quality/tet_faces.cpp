@@ -1,3 +1,5 @@
+// Why: sorting the 4n face keys is several times cheaper than a hash map of the faces, and gives
+// ids in a fixed order.
 #include "quality/tet_faces.h"
 
 #include "core/face_key.h"

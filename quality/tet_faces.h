@@ -1,7 +1,6 @@
 // The faces of a tet mesh, numbered: face q of tet i (the face opposite its node q) gets an id
-// shared with the neighbouring tet across it. Built by sorting the faces' keys
-// (core/face_key.h), which on a 300K-tet mesh is several times cheaper than a hash map of its
-// ~1.2M faces. Ids follow the key order. Requires node ids below kMaxFaceKeyNodes.
+// shared with the neighbouring tet across it. Ids follow the order of the faces' keys
+// (core/face_key.h), so they are deterministic. Requires node ids below kMaxFaceKeyNodes.
 #pragma once
 
 #include <array>

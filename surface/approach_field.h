@@ -1,4 +1,6 @@
-// ApproachField: the relative size field of an approach-graded surface (issue #5, step 3).
+// ApproachField: the relative size field of an approach-graded surface (the approach-guided
+// resolution of Alqaoud et al., "Multi-material, approach-guided, controlled-resolution breast
+// meshing"; docs/surface-pipeline.md, "3. Approach grading").
 //
 // The focus is the target tissue (approximated by the ball around its boundary's area centroid
 // that holds all its boundary vertices) and the corridor (the points within corridor_radius of the

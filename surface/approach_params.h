@@ -1,4 +1,5 @@
-// The surgical approach that grades the surface resolution (config section `approach:`, issue #5).
+// The surgical approach that grades the surface resolution (config section `approach:`;
+// docs/configuration.md, "Surface pipeline").
 //
 //   approach:
 //     enabled: false            # grade the resolution along the approach (default off)

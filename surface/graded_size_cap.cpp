@@ -1,3 +1,8 @@
+// Why: corners never move, and the shape and intersection guards keep some edges far shorter than
+// the size field asks for (two junction corners 0.7 mm apart where a small fgt island touches the
+// skin, a curve edge at the rim of a thin sheet). Their neighbours are still sized by h(x), so a
+// triangle with such an edge and two edges of length h has an angle of about (edge / h) radians:
+// the worst triangles of a remeshed surface sit next to such edges unless the size is capped there.
 #include "surface/graded_size_cap.h"
 
 #include <cassert>

@@ -1,12 +1,7 @@
-// GradedSizeCap: a graded upper bound on the remesher's size field around edges it cannot bring to
-// size (issue #5: the worst triangles of the remeshed phantom sit next to such edges).
-//
-// Corners never move, and the shape and intersection guards of surface/remesh_complex.h keep some
-// edges far shorter than the size field asks for (two junction corners 0.7 mm apart where a small
-// fgt island touches the skin, a curve edge at the rim of a thin sheet). Their neighbours are
-// still sized by h(x), so a triangle with such an edge and two edges of length h has an angle of
-// about (edge / h) radians. The cap makes the size near a stuck edge of length l at most
-//   cap(x) = factor * l + gradation * |x - m|      (m the edge's midpoint)
+// GradedSizeCap: a graded upper bound on the remesher's size field around "stuck" edges, which it
+// cannot bring to size (kept short by fixed junction corners or by the guards of
+// surface/remesh_complex.h). Near a stuck edge of length l (mm) with midpoint m the size is at most
+//   cap(x) = factor * l + gradation * |x - m|
 // i.e. the size an isosceles triangle on that edge needs for its apex angle to reach
 // 2 asin(1 / (2 factor)) (30 degrees at factor 1.93), growing back linearly (a Lipschitz bound, so
 // the size does not jump) to the size field elsewhere. The cap over several edges is the minimum

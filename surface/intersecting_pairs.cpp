@@ -1,3 +1,5 @@
+// Why: CGAL's self_intersections, run per tissue boundary, tests every triangle once per tissue it
+// bounds (an interface triangle twice); one pass over the whole surface tests each pair once.
 #include "surface/intersecting_pairs.h"
 
 #include "surface/box_grid.h"

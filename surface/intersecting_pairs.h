@@ -1,7 +1,6 @@
 // Intersecting triangle pairs of a whole multi-material surface, found through a uniform grid of
-// triangle boxes (surface/box_grid.h) on two threads: the fast path of check_surface (surface/surface_checks.h) for a
-// large surface, the extraction's ~400K triangles, where CGAL's self_intersections per tissue
-// boundary tests every triangle once per tissue it bounds (twice for an interface).
+// triangle boxes (surface/box_grid.h) on two threads: the fast path of check_surface
+// (surface/surface_checks.h, PairSearch::Grid) for a large surface such as the extraction's.
 //
 // The pairs are exactly those CGAL's self_intersections reports on each tissue's boundary: two
 // triangles bounding a common tissue, tested by the same rule (surface/triangle_intersection.h,

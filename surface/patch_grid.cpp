@@ -1,3 +1,8 @@
+// Why: the remesher projects over a million points onto an extracted surface of hundreds of
+// thousands of triangles, all of them within a few triangle sizes of the surface. So a query
+// searches the cells around the point in growing shells and stops once the closest point found is
+// nearer than anything outside the cells searched, and computes closest points only for triangles
+// whose box is nearer than the best so far.
 #include "surface/patch_grid.h"
 
 #include "surface/triangle_geometry.h"

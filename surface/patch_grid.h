@@ -1,13 +1,9 @@
 // PatchGrid: closest points on the patches of a triangle surface through one uniform grid of
 // triangle boxes (surface/box_grid.h; SurfaceProjection's patch queries, surface/surface_projection.h).
 //
-// The remesher projects ~1.3 million points onto the 21K phantom's 409K extracted triangles, all
-// of them within a few triangle sizes of the surface. A query searches the cells around the point
-// in growing shells, and stops once the closest point found is nearer than anything outside the
-// cells searched; it computes point-triangle closest points (surface/triangle_geometry.h, double
-// precision) only for triangles whose box is nearer than the best so far. It returns the closest
-// point of the patch up to round-off (the first found among equally close triangles, in a fixed
-// order: deterministic). Queries are const and may run from several threads.
+// A query returns the closest point of the patch up to round-off (point-triangle closest points
+// in double precision, surface/triangle_geometry.h), the first found among equally close
+// triangles, in a fixed order: deterministic. Queries are const and may run from several threads.
 #pragma once
 
 #include "surface/box_grid.h"

@@ -1,3 +1,10 @@
+// Why: the intersection guard makes validity a property of every operation rather than a hope
+// for the result: where a thin sheet (the skin, an fgt sheet) would be crossed, the operations are
+// refused and the sheet keeps the vertices it needs. The approximation bound does the same for
+// shape: a removal is checked against what remains, so errors cannot pile up. grade_stuck_edges
+// enters only edges between two junction vertices: an edge with a surface vertex can still
+// lengthen when that vertex moves, and a short edge held by a thin sheet, once entered, refines
+// the sheet into ever shorter edges and slivers.
 #include "surface/remesh_complex.h"
 
 #include "core/face_key.h"
@@ -26,17 +33,15 @@ constexpr double kDeviationPerEdge = 0.25;
 /// an isosceles triangle on it whose sides reach the split threshold 4/3 h still has an apex angle
 /// of 2 asin(1 / (2 * 1.5 * 4/3)) = 29 degrees (1.93 gave 30 degrees only for sides of exactly h);
 /// the size then grows by 0.4 mm per mm, so neighbouring triangles differ in size by a factor 1.4
-/// at most. Measured on the phantom before the smoothing's hand-over (keeps_represented) (angles
-/// under 30 degrees at 21K / 2.1K, 2.1K minimum angle): 1.93: 8 / 27, 22.5; 1.7: 4 / 28, 21.5;
-/// 1.5: 7 / 12, 25.8; 1.45: 10 / 13, 26.4. The counts move by a few angles between neighbouring
-/// factors: this is a tuned value, not a threshold.
+/// at most. Tuned on the phantom's two shipped budgets (the count of angles under 30 degrees moves
+/// by a few between neighbouring factors): a tuned value, not a threshold.
 constexpr double kCapFactor = 1.5;
 constexpr double kCapGradation = 0.4;
 /// A closed junction loop keeps at least this many edges. Three would do topologically, but a loop
 /// only a few voxel faces long (a sub-resolution contact, kept at its voxel corners by the
 /// extraction) then becomes one triangle inscribed in a rectangle, obtuse with two angles under 30
-/// degrees (measured on the 21K phantom's 1.4 x 1.5 mm fgt|skin contact: 29.1, 29.1, 121.8);
-/// four vertices evenly spaced along it make a near-square of two near-right triangles.
+/// degrees (e.g. 29, 29 and 122 degrees on a 1.4 x 1.5 mm contact); four vertices evenly spaced
+/// along it make a near-square of two near-right triangles.
 constexpr int kMinLoopEdges = 4;
 /// edges() lists the two halves of the triangle list on two threads from this many triangles on
 /// (a smaller list takes less time than starting the threads).
@@ -144,7 +149,7 @@ double RemeshComplex::weighted_area() const {
 std::vector<std::array<int, 2>> RemeshComplex::edges() const {
   // Each edge once, from its lowest-indexed live triangle: a triangle's edges depend on nothing
   // but its own ring, so the two halves of the triangle list are listed on two threads and joined
-  // in order (the list is the one a single pass makes; 0.4 s of a 21K remeshing on one thread).
+  // in order (the list is the one a single pass makes).
   auto list = [this](std::size_t begin, std::size_t end, std::vector<std::array<int, 2>>& out) {
     for (std::size_t t = begin; t < end; ++t) {
       if (!tri_alive_[t]) continue;
@@ -402,14 +407,14 @@ bool RemeshComplex::collapse_allowed(int a, int b, const std::vector<int>& ts, c
 }
 
 bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
-  // Per thread (partitioned sweeps), kept allocated: most of a sweep's ~10^6 attempts fail fast.
+  // Per thread (partitioned sweeps), kept allocated: most of a sweep's many attempts fail fast.
   thread_local std::vector<int> ts, na;
   thread_local std::vector<std::array<Vector3d, 3>> ring;
   edge_triangles(a, b, ts);
   if (ts.empty()) return false;
   neighbours(a, na);
-  // No edge of the result too long: the test that refuses most attempts (at 21K 955K of 1.2M),
-  // so it comes first. Every test here is free of side effects: their order changes no outcome.
+  // No edge of the result too long: the test that refuses most attempts (about four in five), so
+  // it comes first. Every test here is free of side effects: their order changes no outcome.
   for (int w : na)
     if (w != b && (x_[b] - x_[w]).norm() > max_relative * h(0.5 * (x_[b] + x_[w]))) return false;
   if (!collapse_allowed(a, b, ts, na)) return false;

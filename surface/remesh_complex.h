@@ -1,6 +1,7 @@
 // RemeshComplex: the working mesh of the surface remesher (surface/surface_remesh.h) and its local
-// operations on the whole multi-material complex (Botsch & Kobbelt 2004, extended to junction
-// curves), against a size field h(x) = L s(x):
+// operations on the whole multi-material complex (Botsch & Kobbelt, "A remeshing approach to
+// multiresolution modeling", SGP 2004, extended to junction curves), against a size field
+// h(x) = L s(x):
 //   split     edges longer than 4/3 h at their midpoint, which is projected onto the edge's patch or,
 //             for a junction edge, onto its junction polyline (every triangle around it is split);
 //   collapse  edges shorter than 4/5 h when no edge of the result is longer than 4/3 h: a surface
@@ -14,40 +15,22 @@
 //   relax     density-weighted centroidal relaxation: a surface vertex moves to the centroid of its
 //             one-ring weighted by area / h^2 (a discrete centroidal Voronoi step, Lloyd on the
 //             surface), tangentially, then onto its patch of the reference surface; a curve
-//             vertex to the weighted midpoint of its two curve neighbours, then onto its junction.
-//   smooth_poor  the vertices of triangles with an angle under a threshold move towards the mean of
-//             their neighbours (or halfway, or a quarter), onto their patch or junction, when that
-//             raises the smallest angle around them; a vertex for which none does gets a
-//             pattern search over its patch (or along its junction) for the position with the
-//             largest smallest angle.
-//   collapse_poor  a surface vertex of three or four triangles, one of them under the threshold,
-//             collapses into the neighbour that leaves the largest smallest angle, when that is
-//             larger than its triangles' smallest angle now (a collapse with all its guards).
-//   split_poor  the longest edge of a triangle still under the threshold is split when every
-//             triangle the split makes has a larger smallest angle than the ones it replaces.
-//   smooth_low_quality  the surface vertices of triangles under a Frey-Borouchaki quality move,
-//             by the same pattern search, to the position with the largest smallest quality
-//             around them that keeps their smallest angle and their count of angles under 30
-//             degrees from getting worse.
+//             vertex to the weighted midpoint of its two curve neighbours, then onto its junction;
+// plus the angle and quality smoothing, removals and splits of the polish (documented below).
 // Every operation keeps the patch labels, the orientation and the junction polylines (their
 // vertices and edges are replaced along the same curve), and refuses a move that flips a
 // triangle. Validity: an operation is refused when one of the triangles it creates would intersect
 // another one or any live triangle of the complex (exact predicates, surface/triangle_intersection.h;
 // candidates from a grid of triangle boxes, surface/triangle_grid.h), so an intersection-free input
-// stays intersection free at any budget: thin sheets keep the vertices they need. Shape: each
-// vertex carries the input vertices collapsed into it, and a collapse or relaxation move is refused
-// when one of them would end up farther than the approximation bound (max(max_deviation_mm, L/4))
-// from the triangles around it (an angle-smoothing move may instead hand it to a neighbour whose
-// triangles are within the bound; so may a quality-smoothing move), or when a changed triangle
-// would leave its patch by more than that bound or face away from it (a triangle bridging the two
-// sides of a thin sheet); split midpoints and relaxed points that would project onto the far side
-// of a thin sheet are refused too.
-// Size near stuck edges: grade_stuck_edges() enters the edges between two junction vertices (curve
-// or corner) that stayed far shorter than h into a GradedSizeCap (surface/graded_size_cap.h), and
-// h(x) = min(L s(x), cap(x)) from then on, so the triangles next to them are sized like them
-// instead of becoming slivers. Edges with a surface vertex are not entered: that vertex can still
-// move, and a short edge held by a thin sheet, once entered, refines the sheet into more short
-// edges (measured on the 2.1K phantom: down to 0.02 mm edges and a 0.6 degree minimum angle).
+// stays intersection free at any budget. Shape: each vertex carries the input vertices collapsed
+// into it, and a collapse or relaxation move is refused when one of them would end up farther than
+// the approximation bound (max(max_deviation_mm, L/4)) from the triangles around it (an angle- or
+// quality-smoothing move may instead hand it to a neighbour whose triangles are within the bound),
+// or when a changed triangle would leave its patch by more than that bound or face away from it;
+// split midpoints and relaxed points that would project onto the far side of a thin sheet are
+// refused too. Size near stuck edges: after grade_stuck_edges(), h(x) = min(L s(x), cap(x)) with
+// the GradedSizeCap (surface/graded_size_cap.h) of the edges between two junction vertices that
+// stayed far shorter than h.
 // Deterministic: every sweep visits triangles and vertices in index order, the partitioned ones
 // (collapse_short, relax) each half in index order, the halves on two threads (remesh_partition.cpp).
 #pragma once
@@ -102,8 +85,7 @@ class RemeshComplex {
   /// guard reads only the two rings and what stays fixed between these sweeps (sizes, bound,
   /// reference, kinds), besides the junction edge counts, which only fall (a refusal for a short
   /// junction stands). So that sweep's refusal stands, and the result is the one of trying every
-  /// edge again. At 21K the later sweeps of a round re-tried ~19K short edges that stay
-  /// (bench/RESULTS.md, 2026-11-27 ~21:01-22:22 UTC).
+  /// edge again.
   std::size_t collapse_until_stable(int max_sweeps);
   /// flip_all first runs the local tests of every edge's flip on two threads and then, in index
   /// order, tries only the edges they did not refuse or whose neighbourhood a flip has changed
@@ -111,8 +93,11 @@ class RemeshComplex {
   std::size_t flip_all(bool skip_refused = true);
   void relax();
 
-  /// Angle-improving smoothing of the vertices of triangles with an angle under `min_angle_rad`
-  /// (header comment); appends the vertices it moved to `moved`.
+  /// Angle-improving smoothing of the vertices of triangles with an angle under `min_angle_rad`:
+  /// each moves towards the mean of its neighbours (or halfway, or a quarter), onto its patch or
+  /// junction, when that raises the smallest angle around it; a vertex for which none does gets a
+  /// pattern search over its patch (or along its junction) for the position with the largest
+  /// smallest angle (search_min_angle). Appends the vertices it moved to `moved`.
   void smooth_poor(double min_angle_rad, std::vector<int>& moved);
   /// Quality-raising smoothing of the surface vertices of triangles whose Frey-Borouchaki quality
   /// (surface/triangle_geometry.h) is under `q_below`: the pattern search of search_min_angle

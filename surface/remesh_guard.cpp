@@ -14,10 +14,9 @@ namespace {
 /// its cell size (coarsening grows triangles ~3x over the first rounds).
 constexpr double kGridDrift = 1.5;
 /// Grid cell edge over the mean triangle extent (largest box side): fewer cells per query against
-/// more triangles per cell. Remeshing the 21K phantom (2 runs each, same output), with one query
-/// per created triangle: 9.5 s at 0.7, 8.9 s at 1, 8.45 s at 1.5, 9.1 s at 2, 9.8 s at 3; with one
-/// query over all of an operation's created triangles (would_intersect): 6.6 s at 1, 6.2 s at 1.5,
-/// 5.9-6.0 s at 2, 5.7-6.0 s at 2.5 and 3, 6.1 s at 3.5, 6.3 s at 5.
+/// more triangles per cell. With one query over all of an operation's created triangles
+/// (would_intersect) the remeshing time is flat between 2 and 3 and grows on either side; the
+/// output does not depend on it.
 constexpr double kGridCellPerExtent = 2.5;
 
 Eigen::AlignedBox3d box_of(const TrianglePoints& p) {

@@ -23,9 +23,9 @@
 // the other runs at the same time; then the band (every operation not done on a side, in index
 // order) runs on one thread. With threads_ 1 the halves run one after the other.
 //
-// Why: the collapse and relaxation sweeps are ~85 % of the remeshing at 21K (perf, 2026-11-27;
-// bench/RESULTS.md). The split axis is y: x and z were measured too and each left the shipped
-// 2.1K surface under the paper's Table 1 (bench/RESULTS.md, 2026-11-27).
+// Why: the collapse and relaxation sweeps take most of the remeshing time. The split axis is y:
+// the axis decides which operations wait for the band, hence the (equally valid) surface, and
+// with x or z the shipped 2.1K surface fell short of Table 1 of Alqaoud et al.
 #include "surface/remesh_complex.h"
 
 #include "surface/run_at_once.h"
@@ -38,7 +38,7 @@ namespace {
 /// Below this many live vertices a sweep is not split: it takes milliseconds, and the band would
 /// hold a large share of it.
 constexpr std::size_t kPartitionFrom = 10000;
-/// The axis the halves are split across (header comment).
+/// The axis the halves are split across (see the comment at the top of this file).
 constexpr int kSplitAxis = 1;
 
 }  // namespace

@@ -105,8 +105,7 @@ std::size_t RemeshComplex::flip_all(bool skip_refused) {
   // on the complex as the sweep finds it. Then in index order, as sweep_edges visits: an edge the
   // local tests refused is refused again while no flip has changed the triangle list of a vertex
   // they read (a flip changes those of its four vertices), so only the others are tried. The
-  // flips are those of trying every edge in order; most edges are refused (flip_all was ~10 % of
-  // a 21K remeshing, on one thread).
+  // flips are those of trying every edge in order; most edges are refused.
   std::vector<FlipQuad> quad(list.size());
   std::vector<char> passes(list.size(), 0);
   auto test = [&](std::size_t begin, std::size_t end) {
@@ -320,8 +319,8 @@ bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
     // Along the junction: steps towards either curve neighbour, projected onto the junction.
     // v's shorter curve edge may shorten only while it stays above the collapse threshold
     // (4/5 h): curve vertices never move closer together than that, so a short junction loop
-    // cannot shrink. Measured on the phantom: the 21K minimum angle was a triangle with its
-    // smallest angle at a curve vertex (25.61 degrees), which the other moves could not change.
+    // cannot shrink. Without these moves a surface's smallest angle can sit at a curve vertex,
+    // where no other move changes it.
     const double shorter = shorter_curve_edge(v, x_[v]);
     for (int level = 0; level < kSearchLevels; ++level, step *= 0.5)
       for (int w : nb) {

@@ -7,9 +7,9 @@
 // Include it only from translation units compiled with OpenMP (without, the two run one after the
 // other).
 //
-// Not for fine-grained work: splitting every few microseconds (a remesher collapse's checks, tried
-// in 31ce921) gained 4-22 % on an idle machine but was several times slower while other processes
-// kept both cores busy (bench/RESULTS.md), since each split then waits for the scheduler.
+// Not for fine-grained work (pieces of a few microseconds, such as one collapse's checks): while
+// other processes keep the cores busy, each split waits for the scheduler, and the split code runs
+// several times slower than serial code.
 #pragma once
 
 #include <exception>

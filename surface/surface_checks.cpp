@@ -1,3 +1,8 @@
+// Why: the extracted surface has hundreds of thousands of triangles, and CGAL's self_intersections
+// per tissue boundary tests every interface triangle twice, so the extraction uses the grid search
+// (PairSearch::Grid) and, after its unfolding moved a few vertices, recheck_after_moves instead of
+// a full check. Both apply CGAL's rule (surface/triangle_intersection.h), and the remeshed surface
+// is still checked by CGAL itself (PairSearch::Cgal), independently of the remesher's own test.
 #include "surface/surface_checks.h"
 
 #include "core/face_key.h"
@@ -47,9 +52,9 @@ void count_edges(const std::vector<std::array<int, 3>>& tris, TissueSurfaceCheck
 /// Vertices 0..n-1 of a closed, oriented triangle set (count_edges found nothing) whose triangles
 /// form more than one fan: the boundary touches itself there. Each triangle (a, b, c) adds the link
 /// edge b -> c at a (and so on); with every edge used once in each direction the link edges at a
-/// vertex form disjoint cycles, and a manifold vertex has exactly one. (This replaces CGAL's
-/// is_polygon_soup_a_polygon_mesh, which tests the same plus what count_edges already did, at a
-/// measured 0.9 s of the 1.8 s a check of the 21K phantom's 409K extracted triangles took.)
+/// vertex form disjoint cycles, and a manifold vertex has exactly one. (CGAL's
+/// is_polygon_soup_a_polygon_mesh tests the same plus what count_edges already did, and costs
+/// about as much as the rest of a check of an extracted surface.)
 std::size_t count_nonmanifold_vertices(const std::vector<std::array<int, 3>>& tris, std::size_t n) {
   std::vector<std::size_t> start(n + 1, 0);
   for (const auto& t : tris)

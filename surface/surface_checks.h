@@ -1,4 +1,5 @@
-// Topological and geometric checks of a multi-material TriSurface (issue #5 acceptance).
+// Topological and geometric checks of a multi-material TriSurface (docs/verification.md, "Surface
+// validity").
 //
 // Per tissue (its boundary as TriSurface::tissue_boundary gives it, oriented outward):
 //   closed      every edge is used by exactly two of its triangles, once in each direction (so the
@@ -53,7 +54,7 @@ struct SurfaceCheckReport {
 enum class PairSearch {
   Cgal,  ///< CGAL's self_intersections per tissue boundary: independent of the remesher's own test
   Grid,  ///< surface/intersecting_pairs.h: the same rule, one pass over all triangles on two threads
-         ///< (the 21K extraction's surface-nets stage: 1.27 -> 0.93 s, bench/RESULTS.md)
+         ///< (faster on a large surface, e.g. the extraction's)
 };
 
 /// When `intersecting` is given, it receives the indices (ascending, unique) of the triangles in an
@@ -66,10 +67,9 @@ SurfaceCheckReport check_surface(const TriSurface& surface, std::vector<int>* in
 /// check_surface or this function returned them, not a subset) of the same triangles before the
 /// points listed in `moved` changed; every triangle of `previous_intersecting` must have a moved
 /// vertex (else std::invalid_argument; a subset cannot be detected and gives wrong counts). Then
-/// only pairs with a triangle touching a moved vertex can have changed, and only those are tested
-/// (the extraction's unfolding moves a few vertices of a 400K-triangle surface: a full check costs
-/// ~0.45 s there). Same result as check_surface, including the intersecting-pair counts (same
-/// rule, surface/triangle_intersection.h).
+/// only pairs with a triangle touching a moved vertex can have changed, and only those are tested.
+/// Same result as check_surface, including the intersecting-pair counts (same rule,
+/// surface/triangle_intersection.h).
 /// Cost: each tissue triangle inside the box of all changed ones is box-tested against each
 /// changed one, so it suits a few scattered moves (the unfolding's tens), not thousands.
 SurfaceCheckReport recheck_after_moves(const TriSurface& surface, const SurfaceCheckReport& previous,

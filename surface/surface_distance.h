@@ -1,4 +1,4 @@
-// Distance between two triangle surfaces (issue #5: the remeshed surface against the extracted one).
+// Distance between two triangle surfaces (e.g. the remeshed surface against the extracted one).
 #pragma once
 
 #include "core/tri_surface.h"

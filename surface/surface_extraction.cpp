@@ -1,3 +1,7 @@
+// Why SurfaceNets rather than the deformable multi-material 2-simplex mesh (Rashid et al. 2017)
+// that Alqaoud et al. use: it is linear in the voxel count, has no force weights to tune, and its
+// constraints give the guarantees this stage needs (closed, oriented, shared interfaces, junctions
+// kept) by construction rather than by convergence.
 #include "surface/surface_extraction.h"
 
 #include "core/errors.h"
@@ -245,12 +249,11 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
     }
   }
   // Smoothing shrinks a short closed junction loop (a contact of one or two voxel faces between
-  // two tissues inside a third) towards a point: measured, a one-face tumor|fat contact shrank to
-  // a 0.3 mm perimeter, below anything a volume mesher can resolve without micrometre tets. Such
-  // loops keep their voxel corners here, but stay curve vertices of one closed polyline: as
-  // corners they were fixed in the remesher too, and the voxel-sized triangles between them kept
-  // their shape (on the 21K phantom a two-face fgt|skin contact of 0.7 x 1.5 mm faces: 25.02
-  // degrees, atan(0.7 / 1.5), the surface's smallest angle).
+  // two tissues inside a third) towards a point, down to a perimeter of a fraction of a millimetre,
+  // below anything a volume mesher can resolve without micrometre tets. Such loops keep their
+  // voxel corners here, but stay curve vertices of one closed polyline, not corners: corners are
+  // fixed in the remesher too, which could then not reshape the voxel-sized triangles between them
+  // (a 0.7 x 1.5 mm voxel face gives an angle of atan(0.7 / 1.5) = 25 degrees).
   std::vector<char> pinned(n, 0);
   for (std::size_t v = 0; v < n; ++v) pinned[v] = kind[v] == VertexKind::Corner;
   for (const auto& loop : trace_junctions(curve_adj, kind))
@@ -289,7 +292,7 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
   // boundary of well-composed regions has no intersections); the last round puts them there. After
   // the first, full check each round re-checks only around the vertices it moved.
   std::vector<int> bad;
-  out.checks = check_surface(s, &bad, PairSearch::Grid);  // 400K triangles: the fast search
+  out.checks = check_surface(s, &bad, PairSearch::Grid);  // a large surface: the fast search
   for (int round = 0; !bad.empty() && round < kUnfoldRounds; ++round) {
     std::vector<int> moved;
     for (int t : bad)

@@ -1,10 +1,9 @@
-// Multi-material surface extraction from a tissue-id image (issue #5, the paper's §2.2 stage).
+// Multi-material surface extraction from a tissue-id image (the surface stage, §2.2, of Alqaoud et
+// al., "Multi-material, approach-guided, controlled-resolution breast meshing";
+// docs/surface-pipeline.md, "1. Multi-material surface extraction").
 //
 // Method: multi-label SurfaceNets with constrained relaxation (Frisken, "SurfaceNets for
-// multi-label segmentations with preservation of sharp boundaries", JCGT 2022), chosen over the
-// paper's deformable multi-material 2-simplex mesh (Rashid et al. 2017) because it is linear in the
-// voxel count, has no force weights to tune, and its constraints give the guarantees this stage
-// needs by construction rather than by convergence:
+// multi-label segmentations with preservation of sharp boundaries", JCGT 2022):
 //   0. tissue components below `min_island_voxels` join the region around them
 //      (image/small_islands.h): nothing that small is resolved by the mesh;
 //   1. every region is made well-composed (image/label_repair.h), so each tissue's boundary is a
@@ -14,10 +13,11 @@
 //      quads are exactly its voxel boundary, hence closed and consistently oriented;
 //   3. junction edges (voxel edges around which >= 3 regions meet) form the junction polylines;
 //      their vertices are classified as curve vertices (2 junction edges) or corners (other);
-//   4. Taubin lambda|mu relaxation (no shrinkage): surface vertices move towards the mean of their
-//      neighbours, curve vertices towards the mean of their two curve neighbours (they stay on the
-//      junction curve), corners stay; every vertex is clamped to the box spanned by its 8 voxel
-//      centres, so the surface never leaves the half-voxel band around the voxel boundary;
+//   4. Taubin lambda|mu relaxation (Taubin 1995; no shrinkage): surface vertices move towards the
+//      mean of their neighbours, curve vertices towards the mean of their two curve neighbours
+//      (they stay on the junction curve), corners stay; every vertex is clamped to the box
+//      spanned by its 8 voxel centres, so the surface never leaves the half-voxel band around the
+//      voxel boundary;
 //   5. each quad is split along its shorter diagonal into two triangles;
 //   6. where relaxation folded a tissue's boundary onto itself (check_surface with
 //      PairSearch::Grid: CGAL's self-intersection rule, surface/intersecting_pairs.h), the

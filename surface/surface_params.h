@@ -1,4 +1,5 @@
-// Parameters of the surface pipeline (config section `surface:`, issue #5).
+// Parameters of the surface pipeline (config section `surface:`; docs/configuration.md,
+// "Surface pipeline").
 //
 //   surface:
 //     min_island_voxels: 8        # tissue components with fewer voxels join their surroundings (1 = keep all)

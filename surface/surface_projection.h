@@ -1,5 +1,5 @@
 // SurfaceProjection: closest points on a reference multi-material surface, per patch and per
-// junction polyline (issue #5: the remeshed surface stays on the extracted one).
+// junction polyline (the remesher keeps its vertices on the extracted surface with it).
 //
 // A patch is one region pair (p|q) of the reference TriSurface, numbered in the order the pairs
 // first occur in its triangle list (patch_of_triangle()); a curve is one junction polyline. Queries

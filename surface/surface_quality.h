@@ -1,4 +1,5 @@
-// Triangle quality of a surface exactly as the seed paper's Table 1 reports it (issue #5).
+// Triangle quality of a surface exactly as Table 1 of Alqaoud et al., "Multi-material,
+// approach-guided, controlled-resolution breast meshing" reports it.
 //
 //   average minimal angle  mean over triangles of the smallest of its three angles, degrees
 //   minimal angle          smallest angle of any triangle, degrees

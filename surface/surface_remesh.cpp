@@ -1,3 +1,10 @@
+// Why: the local operations alone leave a few triangles with an angle under 30 degrees (the P30
+// threshold of Alqaoud et al.'s Table 1), mostly next to edges the corners and guards keep short.
+// The polish fixes what vertex moves can; removal of vertices of three or four triangles and
+// splits of long edges fix what they cannot. The repair remeshes around what is left with a finer
+// size, but on a copy: it can also make things worse (or fail to meet the budget), so it is kept
+// only when the Table 1 minima improve. The final quality smoothing raises Q_min where the angle
+// criteria are already met, without giving any of them back.
 #include "surface/surface_remesh.h"
 
 #include "core/errors.h"
@@ -17,24 +24,17 @@ namespace {
 /// last passes move their vertices to raise the smallest angle around them.
 constexpr double kPoorAngleDeg = 30.0;
 /// Angle-improving smoothing passes at most; they stop when one moves nothing. Each pass moves a
-/// vertex once, by a bounded step, so poor triangles improve over many passes. Measured on the
-/// phantom (vertices moved per pass): 21K 72, 16, 17, 12, ... 1, 0 after 21 passes; 2.1K 107, 61,
-/// 48, ... still 3 in the 40th. From 3 passes (each followed by a flip sweep over every edge) to
-/// these (flips only around the moved vertices, surface/remesh_complex.h flip_around): 21K
-/// triangles with an angle under 30 degrees 18 -> 10 of 42,513; 2.1K 69 -> 31 of 4,413, minimum
-/// angle 10.4 -> 14.8 degrees.
+/// vertex once, by a bounded step, so poor triangles improve over many passes (on the phantom's
+/// coarse budget vertices still move after dozens of passes), each followed by flips around the
+/// moved vertices only (RemeshComplex::flip_around).
 constexpr int kAngleSmoothingPasses = 40;
 /// Edges shorter than this times h after a round's collapses have converged are stuck (kept by a
 /// corner or a guard), and the size is capped around them (surface/graded_size_cap.h).
-/// (0.5: below the collapse threshold 4/5 with margin; 0.65 gave the same phantom meshes.) From
+/// (0.5: below the collapse threshold 4/5 with margin; 0.65 gives the same phantom meshes.) From
 /// the second round on: the first coarsens the fine extraction and leaves nothing converged.
 constexpr double kStuckBelow = 0.5;
-/// Rounds of the repair around poor triangles (remesh_surface). Measured on the phantom (budgets
-/// 1,900 / 2,300 / 19,000 / 20,000: smallest angle without repair 13.9 / 18.5 / 18.0 / 27.9
-/// degrees): 2 rounds 27.6 / 26.6 / 30.0 / 30.0; 3 rounds 27.4 / 26.6 / 29.6 / 30.0; 5 rounds
-/// 27.6 / 26.6 / 30.0 / 29.8 (Q_min at 19,000: 0.498, 0.483, 0.480). (Measured on an earlier
-/// sequence of operations; on the present one the repair is kept at both shipped budgets,
-/// bench/RESULTS.md 2026-11-27 ~15:25-16:50 UTC.)
+/// Rounds of the repair around poor triangles (remesh_surface): more rounds did not raise the
+/// smallest angle on the phantom at budgets around the shipped ones, and lowered Q_min.
 constexpr int kRepairRounds = 2;
 /// The repair's sweeps act within this many L of a poor triangle (RemeshComplex::
 /// focus_on_poor_triangles): the size cap it enters around the triangle's shortest edge (length
@@ -61,8 +61,8 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     m.L = options.target_edge_mm;
   }
   // One round: collapse until stable (the first rounds coarsen a fine extraction by a large
-  // factor; at 21K, 183,803 of the 203,882 vertices go), dropping the dead vertices and triangles
-  // after each sweep; then split, flip, relax.
+  // factor: most of its vertices go), dropping the dead vertices and triangles after each sweep;
+  // then split, flip, relax.
   auto round = [](RemeshComplex& c, bool grade) {
     c.collapse_until_stable(20);
     if (grade) c.grade_stuck_edges(kStuckBelow);
@@ -81,8 +81,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   const double poor = kPoorAngleDeg * M_PI / 180.0;
   // Budget, then polish: flips and relaxation, angle-improving smoothing until nothing moves, and
   // a split of the longest edge of a poor triangle no move could fix (split_poor; the budget is
-  // then met again and the smoothing repeats; measured on the phantom: one split at 21K, P30 6 ->
-  // 2 angles, Q_min 0.445 -> 0.501, none at 2.1K). Returns the angle-improving moves.
+  // then met again and the smoothing repeats). Returns the angle-improving moves.
   auto finish = [&](RemeshComplex& c) {
     auto meet_budget = [&] {
       if (budget && !c.match_count(target))
@@ -165,7 +164,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   // Last, quality-raising moves around triangles under kQualitySmoothingBelow, on the chosen
   // complex: they never lower its Q_min nor raise its count of angles under 30 degrees, and never
   // take its smallest angle below min(its value, 30 degrees) (RemeshComplex::smooth_low_quality).
-  // At most as many passes as the angle smoothing; on the phantom they stop after 1-5 moves.
+  // At most as many passes as the angle smoothing.
   std::size_t quality_moves = 0;
   if (quality.q_min < kQualitySmoothingBelow) {
     for (int k = 0; k < kAngleSmoothingPasses; ++k) {

@@ -1,6 +1,6 @@
 // Small geometry of one triangle in 3D (mm): area vector, interior angles, point distance.
-// Shared by the surface quality figures (Table 1) and the surface remesher, so both judge a
-// triangle's angles by the same formula.
+// Shared by the surface quality figures (surface/surface_quality.h) and the surface remesher, so
+// both judge a triangle's angles by the same formula.
 #pragma once
 
 #include <Eigen/Core>
@@ -25,8 +25,9 @@ double angle_at_c(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eige
 /// near-ties (tests/surface/test_triangle_geometry.cpp compares the two within that).
 double min_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
-/// Frey-Borouchaki quality Q = 6/sqrt(3) A / (p h_max) (A area, p half-perimeter, h_max longest
-/// edge; the paper's Table 1): 1 for the equilateral triangle, 0 for a degenerate one.
+/// Frey-Borouchaki (1997) quality Q = 6/sqrt(3) A / (p h_max) (A area, p half-perimeter, h_max
+/// longest edge; as in Table 1 of Alqaoud et al.): 1 for the equilateral triangle, 0 for a
+/// degenerate one.
 double triangle_quality(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 /// The point of the closed triangle abc closest to p (Ericson, Real-Time Collision Detection, 5.1.5).

@@ -1,4 +1,11 @@
 // The one CGAL-heavy translation unit of the surface pipeline's volume mesher.
+//
+// Why: CGAL's polyhedral complex domain takes 2-manifold polyhedra, hence the split of every patch
+// into manifold pieces. Protecting balls on the piece borders (junction curves) keep them sharp
+// and conforming between all patches around them. CGAL's random initialisation misses small
+// parts, so pieces without borders (a tumour inside the gland) get initial points of their own and
+// no closed component is skipped. The domain answers its region queries from a free-cell grid
+// (volume/free_cell_domain.h) with CGAL's own answers, only faster.
 #include "volume/complex_mesher.h"
 
 #include "core/errors.h"

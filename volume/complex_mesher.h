@@ -1,21 +1,18 @@
-// Volume mesher of the surface pipeline (issue #6, step 1): CGAL Mesh_3 from a multi-material
-// surface complex, all tissues at once, so every interface is conforming by construction.
+// Volume mesher of the surface pipeline: CGAL Mesh_3 from a multi-material surface complex (CGAL
+// 3D Mesh Generation manual, "Domains Bounded by a Polyhedral Complex"), all tissues at once, so
+// every interface is conforming by construction. See docs/surface-pipeline.md, section 4.
 //
-// Input: a valid TriSurface (surface/surface_checks.h). Every patch (region pair p|q) is cut into
-// manifold pieces: triangles of the same pair joined across edges that are not on a junction and
-// have exactly two triangles of the pair; a vertex where a piece's triangles form more than one
-// fan is duplicated per fan. Each piece is one polyhedron of CGAL's
-// Polyhedral_complex_mesh_domain_3 with its incident subdomains (p on the side opposite the
-// normal, q on the normal's side). Piece borders, which are junction curves, and creases sharper
-// than feature_angle_deg are protected as polyline features (protecting balls keep them sharp and
-// conforming between all patches around them); pieces without borders (a tumour inside gland) get initial points of their own, so no
-// closed component is skipped (CGAL's random initialisation misses small parts).
+// Input: a valid TriSurface (surface/surface_checks.h), cut into manifold pieces
+// (volume/surface_pieces.h); each piece is one polyhedron of Polyhedral_complex_mesh_domain_3
+// with its incident subdomains (p on the side opposite the normal, q on the normal's side). Piece
+// borders (junction curves) and creases sharper than feature_angle_deg are protected as polyline
+// features; pieces without borders get initial points of their own. Sizes follow `size_mm(x)`
+// (the surface's field h(x), mm; volume_mesh_params.h gives the factors); then the optimisation
+// and sliver repairs of Mesh3Optimisation.
 //
-// Sizes follow `size_mm(x)` (the surface's field h(x), mm; volume_mesh_params.h gives the
-// factors); then the optimisation and sliver repairs of Mesh3Optimisation. The tet mesh's
-// boundary approximates the input surface to within facet_distance; it is not the input surface
-// itself (the TetGen backend keeps that exactly). Tets are positively oriented, coordinates the
-// input's (LPS mm). Deterministic.
+// Output: tets positively oriented, coordinates the input's (LPS mm). The boundary approximates
+// the input surface to within facet_distance; it is not the input surface itself (the TetGen
+// backend keeps that exactly). Deterministic.
 #pragma once
 
 #include "core/progress.h"

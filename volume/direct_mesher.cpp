@@ -1,4 +1,9 @@
 // The one CGAL-heavy translation unit of the direct pipeline (keeps builds short).
+//
+// Why: CGAL interpolates labels between voxel centres, so a tissue that touches the image border
+// ends at the border voxels' centres, in sharp creases and triple lines that need protecting (see
+// the border features below). CGAL's random initialisation misses small parts, so every image
+// component is seeded explicitly (seed_components).
 #include "volume/direct_mesher.h"
 
 #include "core/errors.h"

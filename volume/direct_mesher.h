@@ -1,14 +1,14 @@
-// Direct pipeline: CGAL Mesh_3 from a tissue-id image to one conforming multi-material TetMesh.
+// Direct pipeline: CGAL Mesh_3 from a tissue-id image to one conforming multi-material TetMesh
+// (CGAL 3D Mesh Generation manual, labelled image domains; docs/direct-pipeline.md).
 //
-// Method: tissues that touch the image border end at the centres of the border voxels (CGAL
-// interpolates between voxel centres), where polylines are protected as features; boundaries
-// are smoothed by weighted labels (label_weights.h); every 6-connected component of every tissue gets initial surface points so
-// that no island is skipped (CGAL's random initialisation misses small parts, CGAL issues #93,
-// #923); Delaunay refinement with the criteria of DirectMeshParams and a size field that is finer
-// around `refine_tissue`; then optional Lloyd/ODT, sliver perturbation/exudation and the sliver
-// repairs of boundary_slivers.h and sliver_flips.h. All tets of the
-// result are positively oriented in physical LPS millimetres, even when the image direction matrix
-// is a reflection. Deterministic: the same image and parameters give the same mesh.
+// Method: tissues that touch the image border end at the centres of the border voxels, where
+// polylines are protected as features; boundaries are smoothed by weighted labels
+// (label_weights.h); every 6-connected component of every tissue gets initial surface points, so
+// that no island is skipped; Delaunay refinement with the criteria of DirectMeshParams and a size
+// field that is finer around `refine_tissue`; then optional Lloyd/ODT, sliver
+// perturbation/exudation and the sliver repairs of Mesh3Optimisation. All tets of the result are
+// positively oriented in physical LPS millimetres, even when the image direction matrix is a
+// reflection. Deterministic: the same image and parameters give the same mesh.
 #pragma once
 
 #include "core/label_image.h"

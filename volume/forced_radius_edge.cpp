@@ -1,3 +1,12 @@
+// Why the bound holds: let T be a triangle with smallest angle theta and shortest edge l (the edge
+// opposite theta). By the law of sines its circumradius is r = l / (2 sin theta). A tet with T as
+// a face has a circumsphere through T's three corners, so its circumradius R >= r, and its
+// shortest edge is at most l; hence R / shortest edge >= 1 / (2 sin theta).
+//
+// Why unforced tets are counted by surface nodes: TetGen -Y's unforced tets span thin layers
+// between surface nodes. The likely reason (not checked here): TetGen 1.5 splits a bad tet at its
+// circumcentre and rejects that point when it encroaches a triangle -Y keeps (or, with -m, a
+// vertex's protecting ball), and inside a thin layer it nearly always does.
 #include "volume/forced_radius_edge.h"
 
 #include "core/errors.h"

@@ -1,19 +1,13 @@
 // The radius-edge ratio a triangle surface forces on every tet mesh that keeps its triangles as
 // faces: TetGen with -Y (volume/tetgen_mesher.h), and the mesh the surface was taken from
-// (quality/mesh_interfaces.h). Issue #6 asks TetGen's mesh for a ratio <= 2; this says how far
-// below that the input lets any such mesh go.
+// (quality/mesh_interfaces.h). TetGen is asked for a ratio <= tetgen.radius_edge_ratio (its -q
+// bound); this says how low the input lets the largest ratio of any such mesh go.
 //
-// Bound: let T be a triangle with smallest angle theta and shortest edge l (the edge opposite
-// theta). By the law of sines its circumradius is r = l / (2 sin theta). A tet with T as a face
-// has a circumsphere through T's three corners, so its circumradius R >= r, and its shortest edge
-// is at most l; hence R / shortest edge >= 1 / (2 sin theta). With -Y every input triangle is a
-// face of a kept tet (the tissue on one side of it at least), so the largest ratio of the mesh is
-// at least the largest 1 / (2 sin theta) over the triangles. A mesher that may split boundary
-// triangles (TetGen without -Y) is not bound by it.
-//
-// forced_radius_edge_ratio() is O(triangles). account_radius_edge_above() uses the bound to tell,
-// for a given mesh, the tets above a ratio that its surface is proven to force from the others.
-// Deterministic.
+// Bound: a tet with a face whose smallest angle is theta has circumradius / shortest edge
+// >= 1 / (2 sin theta) (proof in forced_radius_edge.cpp). With -Y every input triangle is a face
+// of a kept tet, so the largest ratio of the mesh is at least the largest 1 / (2 sin theta) over
+// the triangles. A mesher that may split boundary triangles (TetGen without -Y) is not bound by
+// it. Deterministic. See docs/verification.md ("Cross-check with TetGen").
 #pragma once
 
 #include "core/tet_mesh.h"
@@ -39,8 +33,8 @@ struct ForcedRadiusEdge {
 };
 
 /// The bound of the header comment for `surface`, and how many of its triangles force a ratio
-/// above `bound` (e.g. tetgen.radius_edge_ratio). Throws InputError when the surface is invalid
-/// (TriSurface::validate).
+/// above `bound` (e.g. tetgen.radius_edge_ratio). O(triangles). Throws InputError when the surface
+/// is invalid (TriSurface::validate).
 ForcedRadiusEdge forced_radius_edge_ratio(const TriSurface& surface, double bound);
 
 /// The tets of a mesh above a radius-edge bound, split by the cause the header comment proves:
@@ -56,11 +50,8 @@ struct RadiusEdgeAccount {
   /// Largest ratio among the unforced tets (0 when there are none; +infinity for a flat one).
   double max_unforced_ratio = 0.0;
   int max_unforced_tet = -1;  ///< index into mesh.tets of that tet, -1 when there is none
-  /// The unforced tets by how many of their nodes are corners of surface triangles (0..4). On the
-  /// phantom, TetGen -Y's unforced tets all have 2 or more: they span thin layers between surface
-  /// nodes. The likely reason (not checked here): TetGen 1.5 splits a bad tet at its
-  /// circumcentre and rejects that point when it encroaches a triangle -Y keeps (or, with -m, a
-  /// vertex's protecting ball), and inside a thin layer it nearly always does.
+  /// The unforced tets by how many of their nodes are corners of surface triangles (0..4): 2 or
+  /// more for tets that span thin layers between surface nodes.
   std::array<std::size_t, 5> unforced_by_surface_nodes{};
 };
 

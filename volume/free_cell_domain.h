@@ -3,17 +3,14 @@
 // volume mesher's domain (volume/complex_mesher.cpp). CGAL-heavy: include only in CGAL
 // translation units (complex_mesher.cpp and its test).
 //
-// CGAL's polyhedral complex domain tells which tissue a point is in by shooting a ray in a random
-// direction to the first surface triangle it meets, for every cell and facet the refinement
-// creates. Away from the surface a FreeCellGrid answers instead: rays from each component's seed,
-// shot once. For a closed, consistently labelled complex (what mesh_complex is given) the answer
-// is the ray's answer at any point of the component. A ray can still be misjudged where it grazes
-// an edge; so each seed gets three rays, and a component whose rays disagree is left to the rays
-// of every query. CGAL's random sequence is kept as well: the seeds' rays run between a saved and
-// a restored state, and the fast path draws the direction the base would have drawn (the base
-// draws again only for a ray exactly in a triangle's plane or hitting nothing identifiable, which
-// a point in a free cell does not meet in practice), so the meshes stay bit-identical to the
-// ray-shooting ones.
+// The base domain tells which tissue a point is in by shooting a ray in a random direction to the
+// first surface triangle it meets. Here each grid component's seed is classified once, by three
+// rays (valid for a closed, consistently labelled complex, what mesh_complex is given); a
+// component whose rays disagree (a ray grazing an edge) is left to the rays of every query.
+// CGAL's random sequence is kept: the seeds' rays run between a saved and a restored state, and
+// the fast path draws the direction the base would have drawn, so the meshes are bit-identical to
+// the base domain's (the base draws again only for a ray exactly in a triangle's plane or hitting
+// nothing identifiable, which a point in a free cell does not meet in practice).
 #pragma once
 
 #include "core/tri_surface.h"

@@ -1,3 +1,9 @@
+// Why: two face-adjacent free cells form a box that no triangle meets, so a component lies in one
+// region. A cell is marked touched when the triangle's bounding box meets the cell grown by a
+// margin (a thousandth of the cell, far above rounding) and the cell's corners are not all
+// strictly on one side of the triangle's plane (grown by the same margin): the margin keeps
+// points near a cell's faces safe against rounding. A needle or nearly flat triangle, whose
+// computed normal is unreliable, marks its whole box.
 #include "volume/free_cell_grid.h"
 
 #include <Eigen/Geometry>

@@ -1,18 +1,12 @@
 // FreeCellGrid: a uniform grid over a triangle surface's bounding box whose cells that no triangle
-// touches ("free" cells) are grouped into face-connected components. Two face-adjacent free cells
-// form a box that no triangle meets, so every point of a component lies in the same region of the
-// surface's partition of space: one inside/outside query per component answers it for all of its
-// points, and a segment whose bounding box covers only free cells meets no triangle. The volume
-// mesher uses both to answer CGAL's region and facet-dual intersection queries away from the
-// surface without searching the triangles each time (volume/complex_mesher.cpp).
+// touches ("free" cells) are grouped into face-connected components. Every point of a component
+// lies in the same region of the surface's partition of space, so one inside/outside query per
+// component answers it for all of its points, and a segment whose bounding box covers only free
+// cells meets no triangle. Used by the volume mesher's domain (volume/free_cell_domain.h).
 //
-// Conservative: a cell is marked touched when the triangle's bounding box meets the cell grown by a
-// margin (a thousandth of the cell, far above rounding) and the cell's corners are not all
-// strictly on one side of the triangle's plane (grown by the same margin); a needle or nearly flat
-// triangle, whose computed normal is unreliable, marks its whole box. A touched cell that no
-// triangle actually meets only costs a slower query; the margin is what keeps points near a
-// cell's faces safe against rounding. Deterministic: components are numbered in x-fastest scan
-// order of their first cell.
+// Conservative: a cell that a triangle meets is always touched (a cell marked touched that no
+// triangle meets only costs a slower query). Deterministic: components are numbered in x-fastest
+// scan order of their first cell.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,3 +1,4 @@
+// Why reimplemented: CGAL's generate_label_weights needs ITK, which is not a dependency we want.
 #include "volume/label_weights.h"
 
 #include <algorithm>

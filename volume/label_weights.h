@@ -1,6 +1,5 @@
 // Voxel weights that make CGAL's labelled-image surfaces smooth (Stalling, Zöckler, Hege 1998,
-// "Weighted labels for 3D image segmentation"; the method behind CGAL's generate_label_weights,
-// which needs ITK — not a Debian dependency we want — so it is reimplemented here).
+// "Weighted labels for 3D image segmentation"; the method behind CGAL's generate_label_weights).
 //
 // weight(v) = 255 * max over labels l of (G_sigma * 1_l)(v), with 1_l the indicator of label l and
 // G_sigma a Gaussian of standard deviation sigma (mm, per axis converted with the voxel spacing,

@@ -20,7 +20,7 @@ struct Mesh3Optimisation {
   bool odt = false;                     ///< ODT optimisation (slow; off by default)
   double optimise_time_limit_s = 10.0;  ///< time limit of each of Lloyd / ODT, s
   /// Sliver perturbation. Off by default: CGAL 5.5's perturber gives a different mesh on every
-  /// run (measured), and the same input must give the same output files.
+  /// run, and the same input must give the same output files.
   bool perturb = false;
   bool exude = true;                    ///< sliver exudation
   double sliver_bound_deg = 15.0;       ///< dihedral angle the perturber / exuder aim for, degrees

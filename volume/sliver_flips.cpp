@@ -17,8 +17,8 @@ namespace {
 constexpr int kMaxRing = 7;  // edge removal beyond 7 tets rarely helps and grows as n^3
 // A wedge may change tissue when its volume is below this fraction of the regular tet on its
 // longest edge (L^3 / (6 sqrt 2)): its four nodes are then close to one plane, so the interface
-// moves by little. 0.2: at 2.1K the fgt wedge next to the flattest fat tet (9.04 degrees) is at
-// 0.155; moved volumes stay below 0.2 L^3 / 8.5, e.g. 0.16 mm^3 at L = 1.9 mm.
+// moves by little. 0.2 admits the flat wedges found next to slivers on the phantom's interfaces
+// (about 0.15); a moved volume stays below 0.2 L^3 / 8.5, e.g. 0.16 mm^3 at L = 1.9 mm.
 constexpr double kFlatWedge = 0.2;
 
 struct NewTet {

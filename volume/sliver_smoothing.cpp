@@ -1,3 +1,18 @@
+// Why: flips (sliver_flips.h) cannot repair a flat tet whose bad angle sits at an edge of the
+// boundary or of an interface, and CGAL's exudation cannot move vertices. A free vertex's star
+// (the tets around it) lies in one tissue and closes around it, so its outer faces stay where they
+// are. Planar vertices are common on flat cuts: on the phantom's chest-wall plane CGAL leaves rows
+// of surface vertices 0.1-0.3 mm apart midway between two protected junction curves.
+// Near-planar vertices sit on nearly flat patches of a curved interface (e.g. a thin fat layer
+// between skin and muscle whose tets span it); they move orthogonal to their tissue's volume
+// gradient (recomputed at each move), which is the area-weighted sum of the face normals, hence
+// the sin(2 angle) bound on the surface's move. On-surface moves project each trial position onto
+// the reference patch, so only the boundary's triangles between its vertices change; a projection
+// that lands further away than twice the step (the far side of a thin sheet of tissue) is not
+// tried. The pattern search steps along the axes and along the normal of the face opposite the
+// vertex in its star's worst tet (projected into its plane for a planar vertex), halving from a
+// quarter of its mean edge length; a move is kept only when it raises the star's smallest angle,
+// or keeps it and lowers the star's squared shortfall below the target.
 #include "volume/sliver_smoothing.h"
 
 #include "quality/mesh_quality.h"
@@ -23,8 +38,8 @@ TetVolumeAndAngle shape(const TetMesh& mesh, const std::array<int, 4>& k) {
 constexpr double kPlanarRad = 1e-6;
 // A vertex moves over the reference surface only where its oriented face normals are within this
 // angle (radians) of the first one's: a curved patch, not a crease or the rim of a thin sheet, which a
-// move projected onto one side would cut. (Measured on the 21K phantom: at 30 degrees a 9.14-degree
-// sliver on a bent fgt sheet stays; at 45 it is repaired, as with no limit.)
+// move projected onto one side would cut. 45 degrees still admits bent sheets of tissue, whose
+// slivers a tighter limit (30 degrees) leaves unrepaired.
 constexpr double kOnSurfaceMaxRad = 45.0 * M_PI / 180.0;
 
 // How a vertex may move without changing any tissue's boundary (near-planar: its volume).

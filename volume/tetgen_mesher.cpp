@@ -1,3 +1,11 @@
+// Why -Y: without it TetGen flips and splits nearly coplanar boundary triangles and moves the
+// surface by ~1e-6 of the volume, so the two meshes of a cross-check would not share their
+// boundary. With it, a tet at the surface whose split point would land on the surface stays
+// unsplit, hence the volume bound only inside. With -m a tet is split while its circumradius
+// exceeds the value at any of its vertices. Every connected piece of a tissue's boundary (an
+// island, a cavity's wall) gets a seed because TetGen silently drops a region without attribute;
+// the seed lies halfway from the piece's largest triangle to the first other triangle hit by a
+// ray into the tissue, so it is strictly inside whatever the tissue's thickness.
 #include "volume/tetgen_mesher.h"
 
 #include "core/errors.h"
@@ -49,7 +57,7 @@ double first_hit(const TriSurface& s, const Vector3d& origin, const Vector3d& di
 
 /// Seed points strictly inside tissue `id`, one per connected piece of its boundary (a tissue in
 /// several pieces, or with cavities, needs every piece seeded: TetGen drops unseeded regions), and
-/// the mean edge of its boundary (header comment).
+/// the mean edge of its boundary (for the default of TetgenParams::max_volume_mm3).
 std::vector<Vector3d> seeds_inside(const TriSurface& s, int id, double& mean_edge) {
   std::vector<int> ids;
   std::vector<char> reversed;

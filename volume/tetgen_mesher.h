@@ -1,29 +1,21 @@
-// TetGen backend (issue #6, step 2): tetrahedra from a multi-material surface complex with
-// TetGen 1.5, the cross-check mesher for the CGAL volume mesh of the same surface.
+// TetGen backend: tetrahedra from a multi-material surface complex with TetGen 1.5 (Si, "TetGen,
+// a Delaunay-based quality tetrahedral mesh generator", ACM TOMS 41, 2015), the cross-check
+// mesher for the CGAL volume mesh of the same surface (docs/verification.md).
 //
 // Input: a valid TriSurface (every tissue's boundary closed, oriented and intersection free,
-// every interface stored once; surface/surface_checks.h). It becomes one piecewise linear complex:
-// every triangle a facet (its patch pair p|q as the facet marker 1000 p + q), one region per
-// tissue with a seed point inside it, its tissue id as the region attribute and its maximum tet
-// volume. Switches, built from the typed parameters only: p (PLC), q<ratio>/<dihedral> (quality),
-// A (region attributes), a (per-region volume bounds), m (when a largest circumradius is given per
-// surface point: a tet is split while its circumradius exceeds the value at any of its vertices,
-// and points TetGen adds get the value interpolated from the tet they split), Y (keep every input
-// facet as it is: the
-// boundary and every interface are exactly the input triangles, so the tet mesh and the surface
-// agree face for face and enclose the same volumes; without Y, TetGen flips and splits nearly
-// coplanar boundary triangles and moves the surface by ~1e-6 of the volume), z (0-based),
-// Q (quiet). With Y, a tet at the surface whose split point would land on the surface stays
-// unsplit, so the volume bound holds inside a tissue but not for every tet touching the surface.
-// Tets TetGen leaves in no region (cavities of "outside") are dropped.
+// every interface stored once; surface/surface_checks.h), as one piecewise linear complex: every
+// triangle a facet with marker 1000 p + q (its patch pair p|q); one region per connected piece of
+// a tissue's boundary, seeded strictly inside, with the tissue id as region attribute and the
+// tissue's maximum tet volume. Switches (TetGen 1.5 user manual, "Command line switches"), built
+// from the typed parameters only: p (PLC), q<ratio>/<dihedral> (quality), A (region attributes),
+// a (per-region volume bounds), m (a largest circumradius per surface point, interpolated at the
+// points TetGen adds), Y (keep every input facet), z (0-based), Q (quiet).
 //
-// Seeds: every connected piece of a tissue's boundary (an island, a cavity's wall) gets one, so
-// no part of a tissue is left without its region attribute (TetGen would drop it silently): from
-// the piece's largest triangle, halfway to the first other triangle hit by a ray into the tissue,
-// so it lies strictly inside the tissue whatever its thickness.
-//
-// Errors: TetGen's failures (self-intersecting or degenerate input, which a valid surface does
-// not have) become MeshingError with TetGen's error code meaning. Deterministic.
+// Output: the boundary and every interface are exactly the input triangles, so the tet mesh and
+// the surface enclose the same volumes; the volume bound holds inside a tissue but not for every
+// tet touching the surface. Tets in no region (cavities of "outside") are dropped. TetGen's
+// failures (self-intersecting or degenerate input, which a valid surface does not have) become
+// MeshingError with the meaning of TetGen's error code. Deterministic.
 #pragma once
 
 #include "core/progress.h"

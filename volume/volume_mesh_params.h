@@ -1,5 +1,5 @@
-// Parameters of the surface pipeline's volume mesher (config section `volume:`; issue #6): CGAL
-// Mesh_3 from the remeshed multi-material surface (volume/complex_mesher.h).
+// Parameters of the surface pipeline's volume mesher (config section `volume:`): CGAL Mesh_3
+// from the remeshed multi-material surface (volume/complex_mesher.h).
 //
 // Sizes follow the surface's own size field h(x) = L s(x) (mm; L = the remesher's edge length,
 // s = the approach grading, 1 without it), so the volume mesh is as fine as the surface where the
@@ -22,7 +22,7 @@ struct VolumeMeshParams {
   /// Edges where a patch folds by more than this (degrees between the normals of its two
   /// triangles) are protected like the junction curves, so creases stay sharp; 180 = junction
   /// curves only (the default: on a coarse remeshed surface many edges fold by more than 60
-  /// degrees, and their protecting balls crowd into sub-0.1 mm tets; measured at 2.1K).
+  /// degrees, and their protecting balls crowd into sub-0.1 mm tets).
   double feature_angle_deg = 180.0;
   double facet_angle_deg = 25.0;        ///< min surface triangle angle, degrees (<= 30 terminates)
   /// Max distance between a surface triangle of the tet mesh and the input surface, mm; 0 = a
