@@ -21,6 +21,10 @@ int run_guarded(const std::string& command, const std::function<void()>& body) {
   } catch (const OutputError& e) {
     std::cerr << prefix << e.what() << "\n";
     return 2;
+  } catch (const MeshingError& e) {
+    // The mesher could not deliver a valid mesh for valid input; the reports say where.
+    std::cerr << prefix << "meshing failed: " << e.what() << "\n";
+    return 1;
   } catch (const SolverError& e) {
     // A solve that failed on valid input (e.g. did not converge): the message says it all.
     std::cerr << prefix << e.what() << "\n";

@@ -89,6 +89,15 @@ std::vector<FaceOfTet> faces_grouped_by_key(const TetMesh& mesh) {
   return faces;
 }
 
+void add_defect(ConformityReport& report, const char* kind, std::size_t count_so_far,
+                const Eigen::Vector3d& position, int tissue) {
+  if (count_so_far <= kMaxDefectsPerKind) report.defects.push_back({kind, position, tissue});
+}
+
+Eigen::Vector3d centroid(const TetMesh& mesh, const FaceKey& f) {
+  return (mesh.points[f[0]] + mesh.points[f[1]] + mesh.points[f[2]]) / 3.0;
+}
+
 /// Fills the face counts of `report` and returns the boundary faces (for the edge check).
 std::vector<FaceKey> match_faces(const TetMesh& mesh, ConformityReport& report) {
   const std::vector<FaceOfTet> faces = faces_grouped_by_key(mesh);
@@ -109,6 +118,8 @@ std::vector<FaceKey> match_faces(const TetMesh& mesh, ConformityReport& report) 
       if (ti != tj) ++pair_faces[std::min(ti, tj) * ids + std::max(ti, tj)];
     } else {
       ++report.faces_shared_by_more_than_two;
+      add_defect(report, "faces_shared_by_more_than_two", report.faces_shared_by_more_than_two,
+                 centroid(mesh, faces[i].key), ti);
     }
     i = j;
   }
@@ -125,7 +136,8 @@ std::vector<FaceKey> match_faces(const TetMesh& mesh, ConformityReport& report) 
 }
 
 /// Edges of the boundary surface not used by exactly two boundary faces.
-std::size_t count_nonmanifold_edges(const std::vector<FaceKey>& boundary) {
+std::size_t count_nonmanifold_edges(const TetMesh& mesh, const std::vector<FaceKey>& boundary,
+                                    ConformityReport& report) {
   std::vector<std::pair<int, int>> edges;  // (smaller id, larger id): face keys are sorted
   edges.reserve(3 * boundary.size());
   for (const auto& f : boundary) {
@@ -138,7 +150,11 @@ std::size_t count_nonmanifold_edges(const std::vector<FaceKey>& boundary) {
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i + 1;
     while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i != 2) ++bad;
+    if (j - i != 2) {
+      ++bad;
+      add_defect(report, "nonmanifold_boundary_edges", bad,
+                 0.5 * (mesh.points[edges[i].first] + mesh.points[edges[i].second]), 0);
+    }
     i = j;
   }
   return bad;
@@ -157,10 +173,13 @@ int find_root(std::vector<int>& parent, int i) {
 /// factor 2 absorbs round-off in the cell coordinates), so no pair across a border is missed,
 /// while most nodes are near no border and cost one run scan instead of 26 neighbour lookups.
 std::size_t count_duplicate_groups(const std::vector<Eigen::Vector3d>& points,
-                                   const BoundingBox& box, double tolerance) {
+                                   const BoundingBox& box, double tolerance, ConformityReport& report) {
   const int n = static_cast<int>(points.size());
   if (n < 2) return 0;
-  if (!(tolerance > 0)) return 1;  // zero-size box: all nodes coincide
+  if (!(tolerance > 0)) {  // zero-size box: all nodes coincide
+    add_defect(report, "duplicate_node_groups", 1, points[0], 0);
+    return 1;
+  }
 
   const double cell_size = 16.0 * tolerance;
   const double near_border = 2.0 * tolerance / cell_size;  // as a fraction of a cell
@@ -216,8 +235,11 @@ std::size_t count_duplicate_groups(const std::vector<Eigen::Vector3d>& points,
 
   std::vector<int> group_size(n, 0);
   for (int i = 0; i < n; ++i) ++group_size[find_root(parent, i)];
-  return static_cast<std::size_t>(
-      std::count_if(group_size.begin(), group_size.end(), [](int k) { return k >= 2; }));
+  std::size_t groups = 0;
+  for (int i = 0; i < n; ++i) {
+    if (group_size[i] >= 2) add_defect(report, "duplicate_node_groups", ++groups, points[i], 0);
+  }
+  return groups;
 }
 
 std::string tissue_label(int id, const std::vector<std::string>& names) {
@@ -245,24 +267,29 @@ ConformityReport check_conformity(const TetMesh& mesh) {
   const double degenerate_volume = kDegenerateVolumeRel * diagonal * diagonal * diagonal;
 
   std::vector<bool> used(mesh.points.size(), false);
-  for (const auto& tet : mesh.tets) {
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& tet = mesh.tets[t];
     for (int v : tet) used[v] = true;
     std::array<int, 4> sorted = tet;
     std::sort(sorted.begin(), sorted.end());
     const bool repeated = std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
     const double volume = signed_tet_volume(mesh.points[tet[0]], mesh.points[tet[1]],
                                             mesh.points[tet[2]], mesh.points[tet[3]]);
+    const Eigen::Vector3d center =
+        (mesh.points[tet[0]] + mesh.points[tet[1]] + mesh.points[tet[2]] + mesh.points[tet[3]]) / 4.0;
     if (repeated || std::abs(volume) <= degenerate_volume) {
-      ++report.degenerate_tets;
+      add_defect(report, "degenerate_tets", ++report.degenerate_tets, center, mesh.tissue_ids[t]);
     } else if (volume < 0) {
-      ++report.inverted_tets;
+      add_defect(report, "inverted_tets", ++report.inverted_tets, center, mesh.tissue_ids[t]);
     }
   }
-  report.orphan_nodes = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+  for (std::size_t i = 0; i < used.size(); ++i) {
+    if (!used[i]) add_defect(report, "orphan_nodes", ++report.orphan_nodes, mesh.points[i], 0);
+  }
 
-  report.nonmanifold_boundary_edges = count_nonmanifold_edges(match_faces(mesh, report));
+  report.nonmanifold_boundary_edges = count_nonmanifold_edges(mesh, match_faces(mesh, report), report);
   report.duplicate_node_groups =
-      count_duplicate_groups(mesh.points, box, kCoincidentRel * diagonal);
+      count_duplicate_groups(mesh.points, box, kCoincidentRel * diagonal, report);
   return report;
 }
 
@@ -275,6 +302,12 @@ nlohmann::json to_json(const ConformityReport& report) {
                           {"tissue_b_id", pair.second},
                           {"faces", faces}});
   }
+  nlohmann::json defects = nlohmann::json::array();
+  for (const ConformityDefect& d : report.defects) {
+    defects.push_back({{"kind", d.kind},
+                       {"position_mm", {d.position.x(), d.position.y(), d.position.z()}},
+                       {"tissue", d.tissue == 0 ? std::string() : tissue_label(d.tissue, report.tissue_names)}});
+  }
   return {{"conforming", report.conforming()},
           {"nodes", report.nodes},
           {"tets", report.tets},
@@ -285,7 +318,8 @@ nlohmann::json to_json(const ConformityReport& report) {
           {"inverted_tets", report.inverted_tets},
           {"degenerate_tets", report.degenerate_tets},
           {"nonmanifold_boundary_edges", report.nonmanifold_boundary_edges},
-          {"interface_faces", std::move(interfaces)}};
+          {"interface_faces", std::move(interfaces)},
+          {"defects", std::move(defects)}};
 }
 
 std::string format_conformity_table(const ConformityReport& report,
@@ -307,6 +341,17 @@ std::string format_conformity_table(const ConformityReport& report,
   count("degenerate tets", report.degenerate_tets, true);
   count("non-manifold boundary edges", report.nonmanifold_boundary_edges, true);
   out << (report.conforming() ? "conforming: yes\n" : "conforming: NO\n");
+  if (!report.defects.empty()) {
+    out << "where (first " << kMaxDefectsPerKind << " of each kind; LPS mm):\n" << std::fixed
+        << std::setprecision(2);
+    for (const ConformityDefect& d : report.defects) {
+      out << "  " << std::setw(30) << d.kind << " (" << d.position.x() << ", " << d.position.y() << ", "
+          << d.position.z() << ")";
+      if (d.tissue != 0) out << "  " << tissue_label(d.tissue, tissue_names);
+      out << "\n";
+    }
+    out << std::defaultfloat << std::setprecision(6);
+  }
 
   std::size_t width = std::string("tissue a").size();
   for (const auto& [pair, faces] : report.interface_faces) {

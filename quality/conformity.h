@@ -8,6 +8,8 @@
 
 #include "core/tet_mesh.h"
 
+#include <Eigen/Core>
+
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
@@ -17,6 +19,14 @@
 #include <vector>
 
 namespace tissuemesh {
+
+/// One place where a "must be 0" count is violated (the first kMaxDefectsPerKind of each kind).
+struct ConformityDefect {
+  std::string kind;          ///< the count's field name, e.g. "degenerate_tets"
+  Eigen::Vector3d position;  ///< mm: the tet's or face's centroid, the edge's midpoint, the node
+  int tissue = 0;            ///< tissue id of the (first) tet involved; 0 for an orphan node
+};
+inline constexpr std::size_t kMaxDefectsPerKind = 10;
 
 /// Counts describing the conformity of a mesh. The counts documented as "must be 0" are the ones
 /// conforming() checks.
@@ -42,6 +52,8 @@ struct ConformityReport {
   /// non-manifold boundary (e.g. bodies touching along an edge, a cut along duplicate nodes);
   /// must be 0.
   std::size_t nonmanifold_boundary_edges = 0;
+  /// Where the violations are: up to kMaxDefectsPerKind per kind, in mesh order.
+  std::vector<ConformityDefect> defects;
   /// tissue id i -> tissue_names[i-1], copied from the mesh so that to_json can name tissues.
   std::vector<std::string> tissue_names;
 
@@ -56,10 +68,12 @@ struct ConformityReport {
 ConformityReport check_conformity(const TetMesh& mesh);
 
 /// {"conforming", "nodes", "tets", every count under its field name, "interface_faces": [{
-/// "tissue_a", "tissue_b" (names, "outside" for 0), "tissue_a_id", "tissue_b_id", "faces"}]}.
+/// "tissue_a", "tissue_b" (names, "outside" for 0), "tissue_a_id", "tissue_b_id", "faces"}],
+/// "defects": [{"kind", "position_mm": [x, y, z], "tissue"}]}.
 nlohmann::json to_json(const ConformityReport& report);
 
-/// Human-readable text: the counts, one per line with a verdict, then a table of interface faces
+/// Human-readable text: the counts, one per line with a verdict, where the defects are (when the
+/// mesh does not conform), then a table of interface faces
 /// per tissue pair named from `tissue_names` (id i -> tissue_names[i-1], 0 -> "outside"). Ends
 /// with a newline.
 std::string format_conformity_table(const ConformityReport& report,

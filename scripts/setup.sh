@@ -22,7 +22,7 @@ PACKAGES=(
                                                 #   reference BLAS is ~3x slower on the tet10 block)
   liblapack-dev libblas-dev                     # the solver's own supernodal factorisation links them
   libgtest-dev libgmock-dev                     # test suites
-  python3 python3-meshio                        # repository checks; meshio reads our VTU files back
+  python3 python3-yaml python3-meshio           # repository checks; meshio reads our VTU files back
 )
 
 missing=()

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <map>
 #include <random>
@@ -74,6 +76,7 @@ void expect_no_defects(const ConformityReport& r) {
   EXPECT_EQ(r.inverted_tets, 0u);
   EXPECT_EQ(r.degenerate_tets, 0u);
   EXPECT_EQ(r.nonmanifold_boundary_edges, 0u);
+  EXPECT_TRUE(r.defects.empty());
   EXPECT_TRUE(r.conforming());
 }
 
@@ -106,6 +109,9 @@ TEST(Conformity, UnusedNodeIsAnOrphan) {
   EXPECT_EQ(r.orphan_nodes, 1u);
   EXPECT_EQ(r.duplicate_node_groups, 0u);
   EXPECT_FALSE(r.conforming());
+  ASSERT_EQ(r.defects.size(), 1u);  // located at the node itself
+  EXPECT_EQ(r.defects[0].kind, "orphan_nodes");
+  EXPECT_EQ(r.defects[0].position, Vector3d(2.0, 2.0, 2.0));
 }
 
 // The central tet gets its own copy of corner (0,0,0). Its 3 faces through that corner no longer
@@ -176,6 +182,12 @@ TEST(Conformity, ThreeTetsOnOneFaceAreCountedOnce) {
   EXPECT_EQ(r.faces_shared_by_more_than_two, 1u);
   EXPECT_EQ(r.boundary_faces, 9u);  // the 3 other faces of each tet
   EXPECT_FALSE(r.conforming());
+  const auto shared = std::find_if(r.defects.begin(), r.defects.end(), [](const ConformityDefect& d) {
+    return d.kind == "faces_shared_by_more_than_two";
+  });
+  ASSERT_NE(shared, r.defects.end());  // at the centroid of the shared face
+  EXPECT_TRUE(shared->position.isApprox(Vector3d(1.0 / 3, 1.0 / 3, 0.0)));
+  EXPECT_EQ(shared->tissue, 1);
 }
 
 TEST(Conformity, RepeatedNodeAndFlatTetsAreDegenerateNotInverted) {
@@ -187,6 +199,26 @@ TEST(Conformity, RepeatedNodeAndFlatTetsAreDegenerateNotInverted) {
   EXPECT_EQ(r.degenerate_tets, 2u);
   EXPECT_EQ(r.inverted_tets, 0u);
   EXPECT_FALSE(r.conforming());
+  // Each located at its centroid, in mesh order; the table says where.
+  std::vector<Vector3d> where;
+  for (const ConformityDefect& d : r.defects)
+    if (d.kind == "degenerate_tets") where.push_back(d.position);
+  ASSERT_EQ(where.size(), 2u);
+  const auto& p = mesh.points;
+  EXPECT_TRUE(where[0].isApprox((p[0] + p[1] + p[1] + p[2]) / 4.0));
+  EXPECT_TRUE(where[1].isApprox((p[0] + p[1] + p[3] + p[2]) / 4.0));
+  const std::string table = format_conformity_table(r, mesh.tissue_names);
+  EXPECT_NE(table.find("where (first 10 of each kind; LPS mm):"), std::string::npos) << table;
+  EXPECT_EQ(to_json(r)["defects"].size(), r.defects.size());
+}
+
+TEST(Conformity, DefectsAreListedAtMostTenOfEachKind) {
+  TetMesh mesh = unit_cube();
+  for (int i = 0; i < 25; ++i) mesh.points.emplace_back(3.0 + i, 0.0, 0.0);
+  const ConformityReport r = check_conformity(mesh);
+  EXPECT_EQ(r.orphan_nodes, 25u);
+  ASSERT_EQ(r.defects.size(), kMaxDefectsPerKind);
+  EXPECT_EQ(r.defects.back().position, Vector3d(3.0 + 9, 0.0, 0.0));
 }
 
 TEST(Conformity, NeighbourCubesConformOnlyWhenTheirFaceDiagonalsAgree) {

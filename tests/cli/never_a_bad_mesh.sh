@@ -1,0 +1,29 @@
+#!/bin/sh
+# A run either writes a conforming mesh and exits 0, or writes no mesh, keeps its reports (which
+# name the failed counts and where the defects are) and exits 1. Never "conforming: NO" with
+# exit 0. Input: fragmented label maps (tests/cli/inputs/fragmented_labels.py) for a few seeds.
+# Usage: never_a_bad_mesh.sh TISSUEMESH PYTHON3 SOURCE_DIR WORK_DIR
+set -u
+exe=$1; py=$2; src=$3; work=$4
+rm -rf "$work"; mkdir -p "$work"; cd "$work" || exit 1
+fail() { echo "FAIL: $*"; exit 1; }
+for seed in 1 2 3; do
+  "$py" "$src/tests/cli/inputs/fragmented_labels.py" 64 0.5 "labels_$seed.nii.gz" "$seed" > /dev/null || fail "generator"
+  "$exe" mesh "labels_$seed.nii.gz" -c "$src/tests/cli/inputs/fragmented.yaml" -o "out_$seed" > "log_$seed.txt" 2> "err_$seed.txt"
+  rc=$?
+  [ -f "out_$seed/report.json" ] || fail "seed $seed: exit $rc and no report.json"
+  conforming=$("$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['result']['conformity']['conforming'])" "out_$seed/report.json")
+  defects=$("$py" -c "import json,sys; print(len(json.load(open(sys.argv[1]))['result']['conformity']['defects']))" "out_$seed/report.json")
+  case "$rc:$conforming" in
+    0:True)
+      [ -f "out_$seed/mesh.vtu" ] || fail "seed $seed: exit 0 without mesh.vtu"
+      [ "$defects" = 0 ] || fail "seed $seed: conforming with $defects defects listed";;
+    1:False)
+      [ ! -e "out_$seed/mesh.vtu" ] || fail "seed $seed: a non-conforming mesh.vtu was written"
+      [ "$defects" -gt 0 ] || fail "seed $seed: non-conforming but no defect located"
+      grep -q "where (first" "out_$seed/report.txt" || fail "seed $seed: report.txt does not say where"
+      grep -q "meshing failed: the tet mesh does not conform" "err_$seed.txt" || fail "seed $seed: message: $(cat err_$seed.txt)";;
+    *) fail "seed $seed: exit $rc with conforming=$conforming";;
+  esac
+  echo "seed $seed: exit $rc, conforming $conforming, $defects defects located"
+done
