@@ -33,6 +33,8 @@ MeshConfig MeshConfig::from_top(YamlMap& top) {
     throw InputError(top.where("approach") +
                      ": approach grading needs pipeline: surface with surface.target_vertices or surface.target_edge_mm "
                      "(the direct pipeline grades with direct.refine_tissue)");
+  YamlMap checks = top.map("checks");
+  c.checks = MeshChecks::from_yaml(checks);
   YamlMap phantom = top.map("phantom");
   c.phantom = parse_phantom_params(phantom);
   phantom.finish();
@@ -74,6 +76,8 @@ void MeshConfig::emit_keys(YAML::Emitter& out) const {
   volume.to_yaml(out);
   out << YAML::Key << "tetgen" << YAML::Value;
   tetgen.to_yaml(out);
+  out << YAML::Key << "checks" << YAML::Value;
+  checks.to_yaml(out);
   out << YAML::Key << "phantom" << YAML::Value;
   phantom_params_to_yaml(phantom, out);
 }

@@ -9,6 +9,7 @@
 //   approach: {...}             # see surface/approach_params.h (pipeline: surface)
 //   volume: {...}               # see volume/volume_mesh_params.h (pipeline: surface)
 //   tetgen: {...}               # see volume/tetgen_params.h (check --tetgen)
+//   checks: {...}               # see pipeline/mesh_checks.h (volume warnings)
 //   phantom: {...}              # optional: the phantom `tissuemesh demo` generates (image/phantom.h)
 //
 // Unknown keys anywhere are errors naming the file and key path. `to_yaml()` prints the effective
@@ -18,6 +19,7 @@
 #include "core/tissue_table.h"
 #include "volume/direct_mesh_params.h"
 #include "image/phantom.h"
+#include "pipeline/mesh_checks.h"
 #include "surface/approach_params.h"
 #include "surface/surface_params.h"
 #include "volume/tetgen_params.h"
@@ -36,6 +38,7 @@ struct MeshConfig {
   ApproachParams approach;
   VolumeMeshParams volume;
   TetgenParams tetgen;
+  MeshChecks checks;
   PhantomParams phantom;
 
   /// Loads and validates a config file; throws InputError naming the file and key.

@@ -23,6 +23,8 @@ MeshJobResult run_mesh_job(const LabelImage& labels, const std::string& image_na
     auto stage = progress.stage("quality and conformity");
     r.quality = compute_quality(r.meshing.mesh, r.voxel_volume_mm3);
     r.conformity = check_conformity(r.meshing.mesh);
+    r.volume_deviations = volume_deviations(r.quality, config.checks);
+    for (std::string& w : volume_warnings(r.volume_deviations, config.checks)) r.meshing.warnings.push_back(std::move(w));
   }
   return r;
 }

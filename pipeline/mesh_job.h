@@ -23,6 +23,7 @@ struct MeshJobResult {
   std::map<int, double> voxel_volume_mm3;   ///< tissue id -> voxel volume of the tissue
   QualityReport quality;
   ConformityReport conformity;
+  std::vector<VolumeDeviation> volume_deviations;  ///< tissues outside checks.volume_tolerance_percent
 };
 
 /// The first step of every pipeline: checks `labels` against the tissue table (unknown labels,

@@ -104,6 +104,14 @@ std::string sliver_repair_text(const SliverRepair& repair) {
   return s.str();
 }
 
+nlohmann::json deviations_json(const std::vector<VolumeDeviation>& deviations) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const VolumeDeviation& d : deviations)
+    out.push_back({{"tissue", d.tissue}, {"volume_mm3", d.volume_mm3},
+                   {"reference_volume_mm3", d.reference_volume_mm3}, {"error_percent", d.error_percent}});
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json mesh_job_json(const MeshJobResult& r) {
@@ -120,6 +128,7 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
     missed.push_back({{"tissue", m.tissue}, {"voxels", m.voxels}, {"volume_mm3", m.volume_mm3},
                       {"centroid_mm", vec(m.centroid_mm)}});
   j["warnings"] = r.meshing.warnings;
+  j["volume_outside_tolerance"] = deviations_json(r.volume_deviations);
   j["image_components"] = r.meshing.image_components;
   j["initial_surface_points"] = r.meshing.initial_points;
   j["components_not_meshed"] = missed;
@@ -318,6 +327,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
     vj["conforming"] = v.conformity.conforming();
     add_sliver_repair_json(vj, v.meshing.repair);
     vj["warnings"] = v.meshing.warnings;
+    vj["volume_outside_tolerance"] = deviations_json(v.volume_deviations);
     j["volume_mesh"] = vj;
   }
   j["table2_steps"] = table2_json(steps_table(r));

@@ -19,6 +19,8 @@ void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, Progress& progre
   auto stage = progress.stage("volume mesh quality and conformity");
   v.quality = compute_quality(v.meshing.mesh, r.voxel_volume_mm3);
   v.conformity = check_conformity(v.meshing.mesh);
+  v.volume_deviations = volume_deviations(v.quality, config.checks);
+  for (std::string& w : volume_warnings(v.volume_deviations, config.checks)) v.meshing.warnings.push_back(std::move(w));
   r.volume = std::move(v);
 }
 

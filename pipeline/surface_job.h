@@ -31,6 +31,7 @@ struct VolumeStage {
   double size_mm = 0.0;          ///< L of the size field h(x) = L s(x), mm
   QualityReport quality;         ///< per tissue, voxel volume as reference
   ConformityReport conformity;
+  std::vector<VolumeDeviation> volume_deviations;  ///< tissues outside checks.volume_tolerance_percent
 };
 
 struct SurfaceJobResult {

@@ -74,3 +74,47 @@ TEST(MeshConfig, InvalidYamlNamesTheLine) {
     EXPECT_NE(std::string(e.what()).find("broken.yaml: invalid YAML at line"), std::string::npos) << e.what();
   }
 }
+
+TEST(MeshChecks, VolumeToleranceIsReadCheckedAndPrinted) {
+  const std::string tissues = "tissues: [{name: fat, labels: [1]}]\n";
+  const MeshConfig c = MeshConfig::parse(YAML::Load(tissues + "checks: {volume_tolerance_percent: 3}"), "t.yaml");
+  EXPECT_EQ(c.checks.volume_tolerance_percent, 3.0);
+  EXPECT_NE(c.to_yaml().find("volume_tolerance_percent: 3"), std::string::npos) << c.to_yaml();
+  EXPECT_EQ(MeshConfig::parse(YAML::Load(tissues), "t.yaml").checks.volume_tolerance_percent, 5.0);
+  for (const char* bad : {"checks: {volume_tolerance_percent: 0}", "checks: {volume_tolerance_percent: -1}",
+                          "checks: {volume_tolerance: 3}"}) {
+    try {
+      MeshConfig::parse(YAML::Load(tissues + bad), "t.yaml");
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("checks"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(MeshChecks, TissuesOutsideTheVolumeToleranceAreNamedWithTheirError) {
+  QualityReport q;
+  const auto tissue = [](const char* name, double volume, double reference) {
+    TissueQuality t;
+    t.name = name;
+    t.volume_mm3 = volume;
+    t.reference_volume_mm3 = reference;
+    t.volume_error_rel = (volume - reference) / reference;
+    return t;
+  };
+  q.tissues = {tissue("fat", 1000, 1010), tissue("skin", 39, 100), tissue("tumor", 106, 100)};
+  q.tissues.push_back(TissueQuality{});  // no reference volume: never a warning
+  q.tissues.back().name = "unknown";
+  MeshChecks checks;  // 5 %
+  const std::vector<VolumeDeviation> d = volume_deviations(q, checks);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d[0].tissue, "skin");
+  EXPECT_NEAR(d[0].error_percent, -61.0, 1e-12);
+  EXPECT_EQ(d[1].tissue, "tumor");
+  const std::vector<std::string> w = volume_warnings(d, checks);
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_NE(w[0].find("tissue 'skin'"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("-61.0 %"), std::string::npos) << w[0];
+  checks.volume_tolerance_percent = 7;
+  EXPECT_EQ(volume_deviations(q, checks).size(), 1u);
+}
