@@ -2,8 +2,8 @@
 //
 // It is what a Model carries per tissue and what every writer and the solver read; the laws that
 // evaluate it live in materials/ (make_law), the config parsing in materials/material_config.h.
-// The four laws and their energies (formats.md §0; Ī1 = J^(-2/3) I1, Ī2 = J^(-4/3) I2, λ̄a the
-// deviatoric principal stretches):
+// The four laws and their energies (docs/solver.md, "Laws"; Ī1 = J^(-2/3) I1, Ī2 = J^(-4/3) I2,
+// λ̄a the deviatoric principal stretches):
 //   NeoHookean              W = C10 (Ī1 - 3) + K/2 (J - 1)^2, C10 = mu/2
 //                           (Abaqus/CalculiX NEO HOOKE with D1 = 2/K; FEBio Mooney-Rivlin, c2 = 0,
 //                            pressure_model Abaqus — the same energy in both, exactly)

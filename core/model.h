@@ -10,7 +10,8 @@
 //   lengths with `units`.
 // - elements[e][0..3] are the corners, positively oriented ((n1-n0).((n2-n0)x(n3-n0)) > 0);
 //   for tet10, [4..9] are the midside nodes of edges (0,1) (1,2) (2,0) (0,3) (1,3) (2,3): the
-//   order of VTK, Abaqus/CalculiX C3D10 and FEBio tet10 (formats.md §1.6). Unused slots are -1.
+//   order of VTK, Abaqus/CalculiX C3D10 and FEBio tet10 (docs/formats.md, "Conventions shared by
+//   every file"). Unused slots are -1.
 // - tissue_ids[e] in 1..tissue_names.size(); materials[i] belongs to tissue_names[i]. build_model
 //   groups elements by tissue (within a tissue: by lowest corner with `node_order: rcm`, the
 //   mesh's order with `mesh`), so file ids = model order + 1 in every format.

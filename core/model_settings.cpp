@@ -1,3 +1,7 @@
+// Why: `auto` picks tet10 from nu >= 0.49 on because tet4 locks as nu -> 0.5: with nearly
+// incompressible tissue a tet4 model sags far less under gravity than the tet10 model of the same
+// mesh (docs/solver.md, "Elements"). The demo nevertheless asks for tet4 explicitly: its CalculiX
+// cross-check takes minutes as tet4 and would take hours as tet10.
 #include "core/model_settings.h"
 
 #include "core/errors.h"

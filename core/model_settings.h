@@ -73,8 +73,7 @@ enum class NodeOrder { ReverseCuthillMcKee, Mesh };
 struct ModelSettings {
   UnitSystem units = UnitSystem::MillimetreTonneSecond;
   /// tet4 | tet10; empty = `auto`: tet10 when a tissue of the mesh has Poisson's ratio >= 0.49
-  /// (tet4 locks there: the coarse demo sags 20.6 mm as tet4 and 45.1 mm as tet10 in CalculiX),
-  /// else tet4 (default_element).
+  /// (tet4 locks there, docs/solver.md "Elements"), else tet4 (default_element).
   std::optional<ElementOrder> element;
   NodeOrder node_order = NodeOrder::ReverseCuthillMcKee;  ///< `rcm` | `mesh`
   std::vector<NodeSetSettings> node_sets;
@@ -85,9 +84,8 @@ struct ModelSettings {
   AnalysisSettings analysis;
 
   /// The settings `tissuemesh demo` uses: chest wall (muscle|outside) fixed, skin face set, prone
-  /// gravity, mm-t-s, tet4 (explicitly: the demo's CalculiX cross-check of its 102K tets takes
-  /// minutes as tet4 and hours as tet10 in ccx 2.20), RCM node order. Identical to the `model:` section of
-  /// configs/phantom.yaml (tested).
+  /// gravity, mm-t-s, tet4 (explicitly, see the .cpp), RCM node order. Identical to the `model:`
+  /// section of configs/phantom.yaml (tested).
   static ModelSettings phantom_default();
   /// Reads a `model:` mapping; calls map.finish(). Throws InputError naming the key.
   static ModelSettings from_yaml(YamlMap& map);

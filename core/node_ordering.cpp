@@ -1,3 +1,7 @@
+// Why: FEBio built without MKL solves with a skyline (profile) solver whose memory and time grow
+// with the matrix profile, so the model's default numbering keeps the profile small
+// (docs/formats.md, "FEBio"). RCM is the classic profile reducer and is cheap; everything here is
+// deterministic so that the same mesh always gives the same model files.
 #include "core/node_ordering.h"
 
 #include <algorithm>

@@ -1,8 +1,6 @@
-// Node ordering for a small stiffness-matrix profile: reverse Cuthill-McKee (RCM), and the profile
-// itself, so that build_model, the writers' notes and the tests share one definition.
-//
-// Why: FEBio built without MKL solves with a skyline (profile) solver whose memory and time grow
-// with the profile; on a 31K-tet model RCM took the run from > 10 min to 3.4 min (formats.md).
+// Node ordering for a small stiffness-matrix profile: reverse Cuthill-McKee (RCM; Cuthill & McKee,
+// "Reducing the bandwidth of sparse symmetric matrices", 1969), and the profile itself, so that
+// build_model, the writers' notes and the tests share one definition.
 //
 // Both functions see a mesh as `elements` (only slots 0..nodes_per_element-1 of each entry are
 // read; negative slots are skipped) over nodes 0..num_nodes-1. Two nodes are adjacent when an

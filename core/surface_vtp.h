@@ -1,4 +1,5 @@
-// VTP (VTK XML polydata) output of a multi-material TriSurface (issue #5).
+// VTP (VTK XML polydata) output of a multi-material TriSurface (docs/formats.md, "VTP (surface
+// pipeline)").
 //
 // surface file: points in LPS mm; triangle cells with the TriSurface winding (normal from label_p
 // into label_q); cell data `label_p`, `label_q` (Int32 region ids, 0 = outside) and `patch` (Int32,

@@ -23,7 +23,8 @@ struct TetMesh {
   std::size_t num_tissues() const { return tissue_names.size(); }
 
   /// Throws InputError naming `what` and the first offending tet when sizes disagree, an index is
-  /// out of range, a coordinate is not finite or a tissue id is unknown. Orientation is checked by the quality report instead.
+  /// out of range, a coordinate is not finite or a tissue id is unknown. Orientation is checked by
+  /// the quality report instead.
   void validate(const std::string& what) const;
 };
 

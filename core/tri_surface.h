@@ -1,4 +1,5 @@
-// TriSurface: a multi-material triangle surface (the surface pipeline's data, issue #5).
+// TriSurface: a multi-material triangle surface, the surface pipeline's data
+// (docs/surface-pipeline.md).
 //
 // Every boundary between two regions is stored once: triangle t separates region labels[t][0] = p
 // from labels[t][1] = q with p < q, and its winding (right-hand rule) makes the normal point from p

@@ -5,10 +5,11 @@
 namespace tissuemesh {
 
 namespace {
-// How many SI units make one unit of the system (formats.md §4; accelerations: system units per
-// m/s^2). Conversions divide (multiply for accelerations) by exactly representable powers of ten, so that typed values convert to the nearest double (50 kPa
-// -> 0.05 MPa exactly, not 0.049999999999999996 as multiplying by 1e-6 gives) and millimetre
-// coordinates pass through the mm systems unchanged.
+// How many SI units make one unit of the system (docs/formats.md, "Conventions shared by every
+// file"; accelerations: system units per m/s^2). Conversions divide (multiply for accelerations)
+// by exactly representable powers of ten, so that typed values convert to the nearest double
+// (50 kPa -> 0.05 MPa exactly, not 0.049999999999999996 as multiplying by 1e-6 gives) and
+// millimetre coordinates pass through the mm systems unchanged.
 struct Scales {
   const char* name;
   double pa_per_stress, kg_m3_per_density, acceleration_per_m_s2, mm_per_length, force_per_newton;

@@ -1,4 +1,5 @@
-// Consistent unit systems for exported models (no FE solver knows units: formats.md §4).
+// Consistent unit systems for exported models (no FE solver knows units: docs/formats.md,
+// "Conventions shared by every file").
 //
 // The toolkit works internally in millimetres (geometry) and takes material and load inputs in SI
 // (Pa, kg/m^3, m/s^2); a UnitSystem converts them consistently for a model file:

@@ -36,9 +36,8 @@ void write_xml(Data& data, const std::vector<std::string>& tissue_names, const s
   writer->SetInputData(&data);
   writer->SetDataModeToAppended();
   writer->SetCompressorTypeToZLib();
-  // zlib's fastest level: measured on the 60K-tet benchmark model's solution.vtu (bench/
-  // bench_solver.sh), writing took 0.19-0.20 s instead of 0.26-0.28 s at VTK's default level 5, for
-  // a file 1.1 % larger (6.96 MB instead of 6.89 MB). Any zlib reader reads every level.
+  // zlib's fastest level: about a third faster to write than VTK's default level 5 for a file
+  // about 1 % larger; any zlib reader reads every level.
   writer->SetCompressionLevel(1);
   vtkNew<ErrorCapture> errors;
   writer->AddObserver(vtkCommand::ErrorEvent, errors);
@@ -68,7 +67,7 @@ std::vector<std::string> read_string_field(vtkDataObject& data, const char* name
   vtkAbstractArray* a = data.GetFieldData()->GetAbstractArray(name);
   std::vector<std::string> values;
   if (a == nullptr) return values;
-  if (auto* text = vtkStringArray::SafeDownCast(a)) {  // files written before the meshio-readable form
+  if (auto* text = vtkStringArray::SafeDownCast(a)) {  // VTK string arrays, as some files hold them
     for (vtkIdType i = 0; i < text->GetNumberOfValues(); ++i) values.push_back(text->GetValue(i));
     return values;
   }

@@ -2,8 +2,9 @@
 //
 // Layout written: points in LPS mm; VTK_TETRA cells with the TetMesh node order (VTK's tetra order
 // is the same: positive volume for (p1-p0).((p2-p0)x(p3-p0)) > 0); cell data `tissue_id` (Int32,
-// 1-based); field data `tissue_names` (string array, entry i = name of tissue id i+1) and
-// `coordinate_system` = "LPS", `length_unit` = "mm". ParaView shows tissue_id directly.
+// 1-based); the field data of every toolkit VTU (write_grid_vtu, core/vtk_grid_file.h: tissue
+// names, coordinate system LPS, length unit mm, one tag per tissue; docs/formats.md, "VTU").
+// ParaView shows tissue_id directly.
 #pragma once
 
 #include "core/tet_mesh.h"

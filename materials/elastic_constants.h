@@ -2,9 +2,11 @@
 // converted in this one place.
 //
 // Stored: shear modulus mu and bulk modulus K (both > 0), in the caller's stress unit (Pa, kPa or
-// MPa: conversions are unit-free). Everything else is derived (biomech.md §1.1):
+// MPa: conversions are unit-free). Everything else is derived with the isotropic relations
 //   E = 9 K mu / (3K + mu),  nu = (3K - 2mu) / (2(3K + mu)),  lambda = K - 2mu/3,
-//   neo-Hookean / Mooney-Rivlin (Abaqus, CalculiX): C10 + C01 = mu/2, D1 = 2/K.
+//   neo-Hookean / Mooney-Rivlin: C10 + C01 = mu/2, D1 = 2/K (Abaqus Analysis User's Guide,
+//   "Hyperelastic behavior of rubberlike materials"; CalculiX CrunchiX User's Manual 2.20,
+//   *HYPERELASTIC).
 // Validation says why a value is refused: mu > 0, K > 0 (then -1 < nu < 0.5); nu >= 0.5 is
 // refused with the advice to give a bulk modulus (incompressibility is approached by K >> mu).
 #pragma once

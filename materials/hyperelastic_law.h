@@ -1,4 +1,5 @@
-// HyperelasticLaw: the one interface the solver (issue #4) and the writers (issue #3) share.
+// HyperelasticLaw: the one interface to the hyperelastic laws of core/material_spec.h, used by the
+// built-in solver (solver_check/) and by the tests that check the writers' law mappings.
 //
 // A law is a strain-energy density W(C) per unit reference volume of the right Cauchy-Green tensor
 // C = F^T F (symmetric positive definite). It gives the second Piola-Kirchhoff stress S = 2 dW/dC

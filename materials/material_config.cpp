@@ -16,7 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 
 
-// The parameter sets each law accepts (issue #3: E,nu · mu,K · mu,lambda · C10,D1 · c1,c2,k).
+// The parameter sets each law accepts (docs/configuration.md, "Materials").
 const std::vector<std::set<std::string>>& forms_of(MaterialLaw law) {
   static const std::vector<std::set<std::string>> neo{{"E", "nu"},   {"mu", "K"},  {"mu", "lambda"}, {"mu", "nu"},
                                                       {"C10", "D1"}, {"C10", "K"}, {"c1", "k"}};
@@ -196,7 +196,7 @@ MaterialTable MaterialTable::phantom_default() {
     m.source = source;
     return m;
   };
-  const std::string ucl = "UCL NiftySim prone-to-supine model builder (biomech.md 1.3, [C])";
+  const std::string ucl = "UCL NiftySim prone-to-supine model builder (Han et al. 2012; Eiben et al. 2016)";
   t.tissues["fat"] = neo(150, ucl);
   t.tissues["fgt"] = neo(300, ucl);
   t.tissues["skin"] = neo(150, ucl);

@@ -46,7 +46,7 @@ struct MaterialTable {
   void to_yaml(YAML::Emitter& out) const;
 };
 
-/// One material mapping (law, parameters, density, source); `where` names it in messages.
+/// One material mapping (law, parameters, density, source); messages name it by the map's key path.
 MaterialSpec parse_material(YamlMap& map);
 
 }  // namespace tissuemesh

@@ -42,9 +42,9 @@ namespace {
 // limit instead of the difference quotient. The quotient loses ~eps / gap relative accuracy to
 // cancellation (s_a and s_b agree to ~gap); the limit, evaluated symmetrically (principal_gamma),
 // is off by O(gap^2) because it and gamma are both even in the gap about the mid-point. The two
-// errors balance at gap^3 ~ eps, i.e. gap ~ cbrt(2.2e-16) = 6e-6. Measured difference between the
-// branches there, relative to |CC|: ~1e-11 (alpha = 2, 20), ~1e-10 (alpha = -10); a tenfold
-// smaller or larger threshold would cost a factor ~10-100 (test_ogden.cpp sweeps gaps 0 to 1e-1).
+// errors balance at gap^3 ~ eps, i.e. gap ~ cbrt(2.2e-16) = 6e-6, where the two branches agree to
+// ~1e-11 of |CC| (~1e-10 for alpha = -10); a threshold ten times smaller or larger loses one to two
+// digits (tests/materials/test_ogden.cpp sweeps gaps 0 to 1e-1).
 constexpr double kCoincidentGap = 6e-6;
 
 struct Term {

@@ -45,9 +45,9 @@ std::vector<std::string> words(const std::string& line) {
 std::vector<DatBlock> read_calculix_dat(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot read CalculiX results '" + path + "'");
-  // formats.md §2.3: ' displacements (vx,vy,vz) for set NALL and time  0.1000000E+01', then node
-  // rows (i10, 3(1x,e13.6)) [' L' for local axes]; TOTALS=YES adds ' total force (fx,fy,fz) for
-  // set S and time t' followed by one row of three values without a node number.
+  // As ccx 2.20 prints it: ' displacements (vx,vy,vz) for set NALL and time  0.1000000E+01',
+  // then node rows (i10, 3(1x,e13.6)) [' L' for local axes]; TOTALS=YES adds ' total force
+  // (fx,fy,fz) for set S and time t' followed by one row of three values without a node number.
   static const std::regex kHeader(R"(^\s*(\S.*?)\s*\(([^)]*)\)\s*for set\s+(\S+)\s+and time\s+(\S+)\s*$)");
   enum class Mode { None, Rows, Total, Skip } mode = Mode::None;
   std::vector<DatBlock> blocks;

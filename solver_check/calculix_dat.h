@@ -1,4 +1,5 @@
-// Reading CalculiX results from the .dat file written by *NODE PRINT (formats.md §2.3).
+// Reading CalculiX results from the .dat file written by *NODE PRINT (CalculiX CrunchiX User's
+// Manual 2.20, *NODE PRINT).
 #pragma once
 
 #include <Eigen/Core>

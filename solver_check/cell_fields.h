@@ -1,5 +1,5 @@
-// Per-element results of a solved state (issue #4): Cauchy stress, J = det F and von Mises stress
-// of every element, for solution files and reports.
+// Per-element results of a solved state: Cauchy stress, J = det F and von Mises stress of every
+// element, for solution files and reports (docs/formats.md, "VTU": solution.vtu).
 //
 // Input: the model and one displacement per model node in the model's length unit
 // (length_unit(model.units): mm for mm-t-s and mm-kg-s, m for SI), i.e. SolveResult::displacements

@@ -64,19 +64,15 @@ namespace {
 /// OpenBLAS (Debian's BLAS for CHOLMOD here) splits a supernode's dense work by its thread count,
 /// so the factor's last bits, and the solution's, change with that count. Its default count is the
 /// number of processors (or $OMP_NUM_THREADS): the same model would give other bits on another
-/// machine. So CHOLMOD's BLAS runs on kBlasThreads unless $OPENBLAS_NUM_THREADS says otherwise.
-/// Measured: on the 60K-tet benchmark model (bench/bench_solver.sh) solution.vtu is identical for
-/// OPENBLAS_NUM_THREADS 2, 3, 4, 8 and 16 but not 1; on a 41K-unknown grid matrix
-/// (tests/solver/test_linear_solver.cpp) counts 1-6, 8 and 16 all give different bits.
+/// machine. So CHOLMOD's BLAS runs on kBlasThreads unless $OPENBLAS_NUM_THREADS says otherwise
+/// (tests/solver/test_linear_solver.cpp shows the bits changing with the count).
 /// One thread: OpenBLAS's threads synchronise at every multithreaded BLAS call of a factorisation,
-/// and when other processes keep the cores busy each synchronisation waits for a time slice.
-/// Measured on the benchmark model, 2-core machine (2026-11-27): with two busy loops beside it
-/// the solve took 12.7-14.0 s with 1 BLAS thread and 82.1-86.8 s with 2 (factorisations 4.8-5.5 s
-/// against 67.8-70.1 s); on the idle machine 5.97 s against 5.46 s (medians of 6 alternating runs;
-/// factorisations 2.29 s against 1.95 s). Parameter sweeps run solves side by side, and a busy
-/// machine is the common case; large tet10 models on idle many-core machines gain from more
-/// threads (set the variable). The function is looked up at run time, so another BLAS is left
-/// alone.
+/// and when other processes keep the cores busy each synchronisation waits for a time slice: a
+/// solve beside other busy processes then takes several times longer with two BLAS threads than
+/// with one, while on an idle machine two gain only about a tenth. Parameter sweeps run solves side
+/// by side, and a busy machine is the common case; large tet10 models on idle many-core machines
+/// gain from more threads (set the variable; docs/solver.md, "Determinism and threads"). The
+/// function is looked up at run time, so another BLAS is left alone.
 constexpr int kBlasThreads = 1;
 
 }  // namespace

@@ -1,4 +1,5 @@
-// DofMap: the unknowns of the built-in solver after the model's constraints (issue #4).
+// DofMap: the unknowns of the built-in solver after the model's constraints (docs/solver.md,
+// "Constraints").
 //
 // Every node v has a reduced basis: the k_v orthonormal directions (columns of basis(v), 3 x 3,
 // the first k_v used) in which it may move, k_v in {0, 1, 2, 3}:

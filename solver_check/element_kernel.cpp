@@ -83,8 +83,7 @@ namespace {
 
 /// element_response for N nodes with fixed-size matrices: Eigen then multiplies the 6 x 3N strain
 /// matrices inline instead of through its general (blocked, dynamic-size) matrix product, which
-/// dominated the assembly (measured on the 60K-tet benchmark model: ~29 ms per tangent assembly
-/// with dynamic sizes on 2 threads).
+/// dominated the assembly with dynamic sizes.
 template <int N>
 ElementResponse fixed_size_response(const ElementGeometry& geometry, const ElementNodes& u, const HyperelasticLaw& law,
                                     ElementOutput what) {

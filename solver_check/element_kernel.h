@@ -1,4 +1,5 @@
-// Total-Lagrangian element routines of the built-in solver (issue #4) for tet4 and tet10.
+// Total-Lagrangian element routines of the built-in solver for tet4 and tet10 (Bonet & Wood,
+// "Nonlinear Continuum Mechanics for Finite Element Analysis", 2nd ed., 2008; docs/solver.md).
 //
 // Units: the kernel is unit-agnostic; the caller passes consistent values. With a model in
 // mm-t-s (lengths mm, law from make_law(spec, UnitSystem::MillimetreTonneSecond) in MPa, density

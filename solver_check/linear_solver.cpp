@@ -1,3 +1,13 @@
+// Why: a factorisation is the expensive part of a Newton iteration (the demo's tet4 tangent: 60K
+// unknowns, 18 GFlop), and the tangent changes little between Newton iterations and increments.
+// So a factorisation is kept and preconditions conjugate gradients on the current K: CG typically
+// reaches the requested accuracy in a few iterations, each costing one multiplication by K and
+// one pair of triangular solves, a small fraction of a factorisation. In single precision on two
+// threads (single_precision_factor.h) the preconditioner streams half the bytes, two subtrees at
+// once. The numeric factorisations are SupernodalCholesky's (supernodal_cholesky.h), about twice
+// as fast as CHOLMOD's own on two threads, with the same Newton path. When K is not positive
+// definite, a shifted factorisation gives a damped step instead of failing; how the shift is
+// chosen is documented at kEstimateMargin, Impl::sigma_start and Impl::factorise below.
 #include "solver_check/linear_solver.h"
 
 #include "core/errors.h"
@@ -25,24 +35,22 @@ using SparseMatrix = Eigen::SparseMatrix<double>;
 namespace {
 
 /// Iterations allowed with an old factorisation before factorising anew. A factorisation costs
-/// ~14 preconditioned iterations on the benchmark model and ~27 on the demo (measured 2026-11-27),
-/// and slow convergence signals that K has moved far from the factorised one: refactorising then
-/// also speeds up the following Newton steps (kAgedShare refactorises earlier still).
+/// some 15-30 preconditioned iterations on the phantom models, and slow convergence signals that
+/// K has moved far from the factorised one: refactorising then also speeds up the following
+/// Newton steps (kAgedShare refactorises earlier still).
 constexpr int kMaxIterations = 25;
 
 /// When the last CG solve on the kept factor took more than kAgedShare of a factorisation's cost
 /// (counted in CG iterations), the factor has aged: the next solve factorises straight away (CG's
-/// counts grow as the tangent moves away from the factorised one, e.g. 9, 17, 17 over one
-/// increment, and a new factor makes the following solves short again). The cost of a
-/// factorisation in CG iterations is estimated from the symbolic analysis' counts, so the rule is
-/// deterministic: factor_flops / (kFlopsPerStreamedEntry x factor_entries), as a factorisation ran
-/// at ~35 GFlop/s and the single-precision solves (each iteration streams the factor twice) at
-/// ~9 GB/s on the 2-core benchmark machine: estimated 16 iterations for the benchmark model
-/// (measured 13-14) and 33 for the demo (measured ~27). CHOLMOD only (Eigen's LDLT counts no
-/// flops). Measured (2026-11-27, 4 alternating runs on the benchmark model): 12 Newton
-/// iterations either way, 5 factorisations and 50 CG iterations instead of 3 and 105, solve
-/// 2.15-2.63 s instead of 2.54-3.02 s; on the 7 models of the load-stepping measurement
-/// (static_solver.cpp) no Newton path got longer.
+/// counts grow as the tangent moves away from the factorised one, and a new factor makes the
+/// following solves short again: a few more factorisations buy half the CG iterations and a
+/// shorter solve, without lengthening the Newton path). The cost of a factorisation in CG
+/// iterations is estimated from the symbolic analysis' counts, so the rule is deterministic:
+/// factor_flops / (kFlopsPerStreamedEntry x factor_entries), the ratio of a factorisation's flop
+/// rate (~35 GFlop/s) to the single-precision solves' streaming rate (~9 GB/s, 4-byte entries read
+/// twice per iteration) on a 2-core machine; the estimate is a little above the iterations a
+/// factorisation really costs. For small factors it is below one iteration, so any CG solve ages
+/// them. CHOLMOD only (Eigen's LDLT counts no flops).
 constexpr double kFlopsPerStreamedEntry = 31.0;
 constexpr double kAgedShare = 0.5;
 
@@ -51,11 +59,10 @@ constexpr double kAgedShare = 0.5;
 /// lies below the lowest eigenvalue lambda_min and approaches it from above, so |rho| <= |lambda_min|:
 /// the margin covers the estimate's shortfall (LOBPCG stops once rho changes by less than
 /// kEigenChange per iteration) and leaves K + sigma I a smallest eigenvalue of a few |lambda_min|, a
-/// damped step. Measured on the 60K-tet benchmark model (relative to mean|K_ii|): lambda_min
-/// -2.6e-4 and -3.4e-4 (20 LOBPCG iterations), rho after 3 iterations within 10 % of those, CG's
-/// proven bound 7e-5 and 1.2e-4; the ladder below tried 1e-4 (failed, a whole factorisation) then
-/// 1e-2, 40x |lambda_min|. With the estimate: no failed attempt, shifts 1.2e-3 and 1.6e-3, 15 Newton
-/// iterations instead of 16 and 90 CG iterations instead of 98 (a less damped step).
+/// damped step. A few iterations bring rho within ~10 % of lambda_min, while CG's proven bound is
+/// often several times smaller: the ladder alone would try a rung that fails (a whole
+/// factorisation) and then one far above |lambda_min| (a more damped step, more Newton
+/// iterations).
 constexpr double kEstimateMargin = 5.0;
 constexpr double kEigenChange = 0.1;
 constexpr int kMaxEigenIterations = 10;
@@ -85,18 +92,16 @@ struct SparseSpdSolver::Impl {
   /// What precondition() applied last (SparseSpdSolver::preconditioner()).
   enum class Applied { None, Double, Single } applied = Applied::None;
   /// The kept factorisation is of an earlier, unshifted K: the next solve's preconditioner. A
-  /// factor of a shifted K is a poor one for the next K (measured: CG then needs more than
-  /// kMaxIterations every time), so after it the next solve factorises straight away.
+  /// factor of a shifted K is a poor one for the next K (CG then needs more than kMaxIterations
+  /// every time), so after it the next solve factorises straight away.
   bool exact_factor = false;
   /// First rung of the shift ladder (relative to mean|K_ii|): the shift that worked last time,
   /// the estimate's included, one rung lower after two unshifted factorisations in a row. A
   /// failed rung costs up to a full factorisation (CHOLMOD stops at the first non-positive pivot,
   /// often late), and the tangent's indefiniteness changes slowly along a solve; a larger shift
-  /// than needed damps the soft modes' steps (measured: the demo's increments then stall), hence
-  /// the step back down. Measured (2026-11-27): after the estimate's shift (3e-3) worked, the
-  /// next Newton iteration's tangent was still indefinite; a ladder restarted at 1e-8 failed at
-  /// 1e-8, 1e-6 and 1e-4 before 1e-2 worked (2.6 s of factorisations on the demo); started at the
-  /// estimate's shift, failed factorisations fell from 5 to 2 with nodal pressure, 6 to 5 supine.
+  /// than needed damps the soft modes' steps (the demo's increments then stall), hence the step
+  /// back down. The next Newton iteration's tangent is usually still indefinite after a shift
+  /// worked: a ladder restarted at kMinShift would fail rung after rung before reaching it.
   double sigma_start = kMinShift;  ///< always in [kMinShift, kMaxShift]
   bool last_shifted = false;  ///< the last factorisation was shifted
   int last_cg_iterations = 0;  ///< of the last CG solve since the last factorisation (0: none)
@@ -192,9 +197,9 @@ struct SparseSpdSolver::Impl {
         cholmod_common& c = cholmod.cholmod();
         c.print = 0;  // the library never prints: failures are reported by info()
         // Coarser supernode amalgamation than CHOLMOD's default (nrelax 4/16/48, zrelax
-        // 0.8/0.1/0.05): bigger dense blocks for BLAS at the cost of a few explicit zeros.
-        // Measured on the 60K-tet benchmark model (42K unknowns, 3 runs): numeric factorisation
-        // 0.33 s instead of 0.40 s; 3x the default was no faster than 2x.
+        // 0.8/0.1/0.05): bigger dense blocks for BLAS at the cost of a few explicit zeros. Twice
+        // the default makes the numeric factorisation about a sixth faster; three times gains
+        // nothing more.
         for (int i = 0; i < 3; ++i) c.nrelax[i] *= 2;
         c.zrelax[1] *= 2;
         c.zrelax[2] *= 2;

@@ -1,24 +1,12 @@
 // ReducedAssembly: internal force and tangent of the whole mesh in the solver's reduced unknowns
-// (solver_check/dof_map.h), assembled in parallel and deterministically (issue #4).
+// (solver_check/dof_map.h), assembled in parallel and deterministically.
 //
 // The tangent is the lower triangle of the symmetric reduced matrix B^T K B (B: every node's basis
 // of allowed directions), stored column-major (Eigen::SparseMatrix) with a pattern built once from
 // the node graph: entry (r, c), r >= c, exists when the nodes of dofs r and c share an element.
-// Every element knows, for each pair of its reduced dofs, the slot of that entry in the value
-// array, so assembly writes straight into the matrix (no triplets, no sort).
-// Parallelism and determinism: elements are taken in chunks of a few thousand; the elements of a
-// chunk are evaluated in parallel (OpenMP) into a buffer, then scattered into the matrix and the
-// force vector in element order by the same threads, each owning one contiguous range of the
-// matrix's values and of the force vector. Every matrix entry and force component therefore
-// receives its element contributions in element order for any thread count (bit-identical
-// results), the buffer stays small, and there are two synchronisations per chunk (element
-// colouring needs one per colour, ~30, which costs a scheduler time slice each on a loaded
-// 2-core machine: measured 30x slower than serial while another build ran). Measured on the
-// 60K-tet benchmark model (bench/bench_solver.sh), 2 threads: the scatter, done serially before,
-// took ~0.6 s of the solve's ~1.7 s of assembly. A thread skips the elements whose slots all lie
-// in other threads' ranges (with the RCM numbering most do) and adds without a range test those
-// wholly in its own: assembly 1.24 s instead of 1.40 s per solve (medians of 5 alternating runs),
-// the same bits.
+// Elements are evaluated in parallel (OpenMP) and scattered in element order, so every matrix
+// entry and force component receives its element contributions in element order for any thread
+// count: bit-identical results (the .cpp says how and why).
 // With a NodalPressure (solver_check/nodal_pressure.h) the elements carry the laws' shear parts,
 // each element response gets its nodal-pressure terms, and the patch terms U''/V_p d_p d_p^T are
 // scattered serially in patch order after the elements; the pattern then also holds every pair

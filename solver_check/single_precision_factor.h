@@ -2,18 +2,9 @@
 // its two triangular solves, split over two threads: the preconditioner of the built-in solver's
 // conjugate gradients (solver_check/linear_solver.h).
 //
-// Why: on the 60K-tet benchmark model each CG iteration applies the kept factorisation once (a
-// forward and a backward triangular solve through its ~8M entries) and that costs ~20x the
-// multiplication by K; the solves stream the factor from memory. Single precision halves the bytes,
-// and the elimination tree of a nested-dissection ordering splits into independent subtrees that
-// two threads solve at the same time. A preconditioner only has to be close to K^-1: the float
-// factor's relative error (~1e-7) leaves CG's convergence unchanged, and CG itself still works on
-// K in double precision, so the solution's accuracy does not change.
-//
 // Memory: the factor's values are converted to single precision in place (the first half of
 // their own array) and its index arrays are borrowed, so the preconditioner costs no memory beyond
-// the factor's (measured on the benchmark model: a separate float copy raised the peak by 43 MiB,
-// 257 -> 300 MiB); the factor's double values are gone until it is factorised again.
+// the factor's; the factor's double values are gone until it is factorised again.
 //
 // Factor layout: solver_check/supernodal_tree.h.
 //

@@ -1,5 +1,6 @@
 // Comparing two nodal displacement fields of the same model (e.g. the built-in solver against
-// CalculiX on the same deck): the figures of the issue #4 cross-check. Pure arithmetic, no I/O.
+// CalculiX on the same deck): the figures of `check --calculix` (docs/verification.md, "Solver:
+// agreement with CalculiX"). Pure arithmetic, no I/O.
 //
 // With u_ref the reference field (CalculiX) and u the other (built-in), per node i
 //   d_i = |u_i - u_ref,i|    (Euclidean norm of the 3-vector difference)

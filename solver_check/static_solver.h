@@ -1,5 +1,5 @@
-// Built-in nonlinear static solver (issue #4): total-Lagrangian finite elements on the model's
-// tet4/tet10 mesh, the model's own hyperelastic laws, dead gravity load.
+// Built-in nonlinear static solver: total-Lagrangian finite elements on the model's tet4/tet10
+// mesh, the model's own hyperelastic laws, dead gravity load (docs/solver.md).
 //
 // Units: everything is solved in the model's unit system (model.units). Nodes (stored in mm) are
 // converted with length_from_mm, densities with density_from_kg_per_m3, gravity with
@@ -18,33 +18,20 @@
 // The solver works in each node's reduced basis (the unconstrained directions), so constraints
 // are exact and the tangent stays symmetric positive definite where the material is stable.
 //
-// Algorithm (settings from model.analysis, see core/model.h AnalysisSettings):
-// - load stepping: starts with load_steps equal increments; an increment that fails (Newton
-//   diverges or produces a non-finite value, an element inverts (J <= 0), the linear solve fails,
-//   or more than max_newton_iterations are needed) is retried with half the increment; the
-//   increment never drops below min_step_fraction (then the solve stops, converged = false).
-//   An increment that converged in at most 4 Newton iterations doubles the next one, in at most
-//   3 quadruples it, except right after a cut-back, when it doubles (back to the size that
-//   failed); never beyond the rest of the load: load_steps sets the first increment, not the
-//   number of increments.
-//   At most max_load_steps increments are attempted, cut-backs included.
-// - Newton-Raphson with the consistent tangent. Each direction solves K dq = R to a relative
-//   residual eta = ||R|| / scale clamped to [1e-4, 1e-2] (inexact Newton;
-//   solver_check/linear_solver.h): conjugate gradients preconditioned by the last factorisation
-//   of the tangent, and a new factorisation (CHOLMOD's supernodal Cholesky when the build has it,
-//   else Eigen::SimplicialLDLT; symbolic analysis done once) only when CG does not get there in 25
-//   iterations or (CHOLMOD) its last solve took more than half a factorisation's cost; a tangent
-//   that is not positive definite gives a damped (shifted) step. Backtracking line search: step
-//   lengths 1, 1/2, ... 1/16, the first that keeps every element un-inverted and lowers either the
-//   potential energy W(u) - load . u or ||R|| is taken; when none does, the un-inverted trial with
-//   the smallest ||R|| is taken. A full step predicted to end its increment (it meets the
-//   displacement test, and its residual predicted as forcing x ||R|| meets the residual test) is
-//   evaluated for its force alone, its tangent being of no use there; when it falls short, the
-//   tangent follows.
-// - each increment starts from a secant prediction (the last increment's change, scaled), or
-//   from the last accepted state when that prediction inverts an element, when the first linear
-//   solve there fails (a tangent too far from positive definite for the shift ladder), or after a
-//   cut-back.
+// Algorithm (settings from model.analysis, AnalysisSettings in core/model.h; docs/solver.md,
+// "Newton iterations and load stepping"):
+// - load stepping: the first increment is 1/load_steps; an increment that fails (Newton diverges
+//   or produces a non-finite value, an element inverts (J <= 0), the linear solve fails, or more
+//   than max_newton_iterations are needed) is retried at half the size, never below
+//   min_step_fraction (then the solve stops, converged = false). An increment that converged in
+//   at most 4 Newton iterations doubles the next one, in at most 3 quadruples it (only doubles
+//   right after a cut-back), never beyond the rest of the load: load_steps sets the first
+//   increment, not the number of increments. At most max_load_steps increments are attempted,
+//   cut-backs included.
+// - Newton-Raphson with the consistent tangent, inexact linear solves
+//   (solver_check/linear_solver.h) and a backtracking line search on the potential energy
+//   W(u) - load . u and ||R|| (step lengths 1 .. 1/16); each increment starts from a secant
+//   prediction.
 // - convergence of an increment: ||R_free|| <= residual_tolerance * max(||lambda f_ext||,
 //   ||f_int||) (norms over all dofs: the load's scale under gravity, the reactions' scale for a
 //   prescribed motion without load) AND ||delta q|| <= displacement_tolerance * ||q|| for the last

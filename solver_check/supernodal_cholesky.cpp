@@ -1,3 +1,19 @@
+// Why: CHOLMOD's numeric factorisation works through the supernodes one after the other, and its
+// BLAS runs on one thread (cholmod_llt.cpp: more BLAS threads change the last bits with their
+// count and stall on a busy machine). A nested-dissection ordering's tree splits below its top
+// separators into independent subtrees; here two threads factorise them at once, each calling
+// BLAS on one thread, and the top follows: its wide supernodes (the root separator of a 3D mesh
+// holds nearly a third of the flops) by panels on both threads, the others on one. With the
+// panels the root's dense factorisation takes about half the time it takes on one thread.
+//
+// Algorithm (right-looking supernodal): a supernode whose block holds A's entries less the updates
+// of all its descendants is factorised (dpotrf on its diagonal block, dtrsm below it) and sends its
+// update L_below L_mine^T (dsyrk, dgemm) to every ancestor its rows reach, in the order of its
+// rows. The updates go straight into the ancestor's block (only one thread touches a bin's
+// supernodes), except bin 1's updates of top supernodes: they go into a buffer, added to the top's
+// blocks once both bins are done (bin 0 writes there meanwhile). Every entry thus receives the same
+// operations in the same order whatever the thread count (one thread does bin 0, bin 1, then the
+// top; a wide supernode is cut into the same panels and panel parts for any thread count).
 #include "solver_check/supernodal_cholesky.h"
 
 #include <algorithm>
@@ -11,7 +27,7 @@
 
 // BLAS and LAPACK (Fortran interface; the trailing arguments are the hidden lengths of the
 // character arguments). Debian links them to OpenBLAS. Two threads call them at once only when
-// OpenBLAS runs each call on the caller's thread (one BLAS thread, linear_solver.cpp's default;
+// OpenBLAS runs each call on the caller's thread (one BLAS thread, cholmod_llt.cpp's default;
 // the caller passes threads = 1 otherwise).
 extern "C" {
 void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info, std::size_t);
@@ -31,8 +47,9 @@ namespace {
 
 /// Top supernodes with at least kPanelledColumns columns are factorised panel by panel, kPanel
 /// columns at a time, on two threads (SupernodalCholesky::factorise_panelled); narrower ones by one
-/// dpotrf and one dtrsm. On the 60K-tet benchmark model the top is one supernode of 1,593
-/// columns with 29 % of the flops, which one dpotrf did on one thread while the other waited.
+/// dpotrf and one dtrsm. The top of a 3D mesh's tree is typically one supernode of over a
+/// thousand columns with nearly a third of the flops, which one dpotrf would do on one thread
+/// while the other waits.
 constexpr int kPanelledColumns = 256;
 constexpr int kPanel = 128;
 

@@ -1,31 +1,14 @@
-// SupernodalCholesky: the numeric Cholesky factorisation of the built-in solver's tangent (issue
-// #4), into the supernodal factor that CHOLMOD's symbolic analysis laid out
-// (solver_check/supernodal_tree.h), with the two bins of the elimination tree factorised on two
-// threads at the same time.
+// SupernodalCholesky: the numeric Cholesky factorisation of the built-in solver's tangent, into
+// the supernodal factor that CHOLMOD's symbolic analysis laid out (solver_check/supernodal_tree.h),
+// with the two bins of the elimination tree factorised on two threads at the same time and the
+// top's wide supernodes by panels on both (right-looking supernodal Cholesky; the .cpp says why).
 //
-// Why: CHOLMOD's numeric factorisation works through the supernodes one after the other, and its
-// BLAS runs on one thread (linear_solver.h: more BLAS threads change the last bits with their
-// count and stall on a busy machine). A nested-dissection ordering's tree splits below its top
-// separators into independent subtrees; here two threads factorise them at once, each calling
-// BLAS on one thread, and the top follows: its wide supernodes (the root separator of a 3D mesh:
-// 1,593 columns and 29 % of the flops on the 60K-tet benchmark model) by panels on both
-// threads, the others on one. The root's dense factorisation took 37-43 ms of each ~160 ms
-// factorisation on one thread, 19-25 ms by panels on two.
-//
-// Algorithm (right-looking supernodal): a supernode whose block holds A's entries less the updates
-// of all its descendants is factorised (dpotrf on its diagonal block, dtrsm below it) and sends its
-// update L_below L_mine^T (dsyrk, dgemm) to every ancestor its rows reach, in the order of its
-// rows. The updates go straight into the ancestor's block (only one thread touches a bin's
-// supernodes), except bin 1's updates of top supernodes: they go into a buffer, added to the top's
-// blocks once both bins are done (bin 0 writes there meanwhile). Every entry thus receives the same
-// operations in the same order whatever the thread count: the factor depends on A and the shift
-// only (one thread does bin 0, bin 1, then the top; a wide supernode is cut into the same panels
-// and panel parts for any thread count).
+// Determinism: every entry receives the same operations in the same order whatever the thread
+// count, so the factor depends on K and the shift only.
 //
 // Memory: the factor's own values (written in place) plus, when the tree splits, a buffer of the
-// top supernodes' blocks, the largest update per thread, and the map from K's entries to the
-// factor's (one int per entry). On the 60K-tet benchmark model: 2.5M doubles for the top in a
-// factor of 11.4M (CHOLMOD's blocks, upper triangles of the diagonal blocks included).
+// top supernodes' blocks (typically a fifth of the factor), the largest update per thread, and
+// the map from K's entries to the factor's (one int per entry).
 #pragma once
 
 #include "solver_check/supernodal_tree.h"

@@ -1,5 +1,5 @@
-// Supernodal factors: the layout shared by the built-in solver's own supernodal routines (issue
-// #4), its checks, and the split of the supernodes' elimination tree between two threads.
+// Supernodal factors: the layout shared by the built-in solver's own supernodal routines and their
+// checks, and the split of the supernodes' elimination tree between two threads.
 //
 // Factor layout (CHOLMOD's supernodal LL', read through SupernodalFactorView): A = P^T L L^T P;
 // supernode s holds columns super[s] .. super[s+1]-1 of L as a dense column-major block of

@@ -1,4 +1,5 @@
-// Tetrahedral shape functions and quadrature rules for the built-in solver (issue #4).
+// Tetrahedral shape functions and quadrature rules for the built-in solver (docs/solver.md,
+// "Elements").
 //
 // Reference (natural) tetrahedron: xi = (r, s, t), r, s, t >= 0, r + s + t <= 1, volume 1/6, with
 // barycentric coordinates L0 = 1 - r - s - t, L1 = r, L2 = s, L3 = t, so that corner a sits at

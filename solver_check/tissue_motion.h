@@ -1,5 +1,5 @@
-// How each tissue moved in a solved state (issue #4): volume-mean displacement of every tissue and
-// the largest nodal displacement — the figures a prone/supine study reports (e.g. the tumour's
+// How each tissue moved in a solved state: volume-mean displacement of every tissue and the
+// largest nodal displacement — the figures a prone/supine study reports (e.g. the tumour's
 // displacement).
 //
 // Input: the model and one displacement per model node in the model's length unit (as

@@ -1,3 +1,18 @@
+// Why: the deck is checked with CalculiX 2.20 (the tests run it), whose reader is stricter than
+// Abaqus' in places; each rule below answers a CalculiX behaviour seen in runs.
+// - Reals: ccx reads each field as f20.0 of its first 20 characters and silently cuts the rest
+//   (a 25-character "0.2000...e+01" was read as 0.2), so no real is longer than 20 characters.
+// - Ogden N >= 2: ccx replaces any D_i < 1e-10 by (0.1/mu)^i (hyperelastics.f), a unit-dependent
+//   (J-1)^4 term, so D2 (, D3) are written as D1 * 1e12 instead of 0: below 1e-12 of the (J-1)^2
+//   term for |J-1| <= 1.
+// - Sliding nodes also in a fixed set get no *EQUATION and stay fixed: ccx refuses a DOF both
+//   fixed and dependent (exit 201, "dependent side of a MPC and a SPC"). A node in two sliding sets
+//   uses a different dependent DOF per equation (ccx refuses a DOF dependent twice); parallel
+//   duplicates are dropped, with a note.
+// - Tissues without elements are left out: an empty ELSET makes *SOLID SECTION fail.
+// ccx's RF (printed with TOTALS=YES) is the internal force at the fixed nodes: it leaves out the
+// share of the body load lumped on those nodes, so the RF total is the weight less that share
+// (docs/formats.md, "Abaqus / CalculiX").
 #include "fe_export/abaqus/write_abaqus.h"
 
 #include "core/errors.h"
@@ -135,7 +150,8 @@ void write_material(std::ostream& out, const std::string& name, const MaterialSp
         v.push_back(real(term.alpha));
       }
       for (std::size_t i = 0; i < n; ++i) v.push_back(real(i == 0 ? D1 : D1 * kHigherOrderD));
-      // Material data lines hold 8 values (N=3: mu1..alpha3, D1, D2 / D3), formats.md §2.2.
+      // Material data lines hold 8 values (N=3: mu1..alpha3, D1, D2 / D3): CalculiX CrunchiX
+      // User's Manual 2.20, *HYPERELASTIC.
       for (std::size_t i = 0; i < v.size(); ++i) out << v[i] << ((i + 1 == v.size() || i == 7) ? "\n" : ", ");
       break;
     }

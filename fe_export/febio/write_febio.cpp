@@ -1,3 +1,18 @@
+// Why, for the choices that follow FEBio's source rather than its manual:
+// - Element ids are contiguous in block order: the 4.0 reader keeps the file's ids
+//   (FEBioMeshDomainsSection4.cpp, el.SetID(domElement.id)), but FEBModel::BuildPart with
+//   buildDomains (other FEBio import paths) renumbers elements 1, 2, ... in file order, ignoring
+//   them. Ids that increase within and across blocks without gaps are the same under both, so plot
+//   and log element ids never depend on the reader path.
+// - Names of at most 127 characters, ASCII comments without "--": FEBio's XMLReader copies
+//   attribute values into 128-character buffers and does not expand entities
+//   (FEBioXML/XMLReader.h/.cpp).
+// - Oblique sliding nodes: FEBio's `<bc type="linear constraint">` sets parent dof = sum value_j *
+//   child dof_j, offset 0 (FEBioXML/FEBioBoundarySection3.cpp ParseLinearConstraint,
+//   FECore/FELinearConstraintManager.cpp Update), and FELinearConstraintManager::Activate refuses
+//   a parent dof that is a child or a fixed dof. So the node's normals from all its oblique sets,
+//   less the dofs that axis-parallel sets fix, are reduced by complete pivoting, and each
+//   independent row gives one constraint whose parent is its pivot dof (largest coefficient).
 #include "fe_export/febio/write_febio.h"
 
 #include "fe_export/text_format.h"
@@ -265,7 +280,7 @@ void write_loads(std::ostream& out, const Model& model) {
   c << "gravity '" << model.gravity.name << "' = (" << shortest_decimal(a[0]) << ", " << shortest_decimal(a[1]) << ", " << shortest_decimal(a[2]) << ") "
     << acceleration_unit(u)
     << " (LPS). FEBio's const body_load is the NEGATIVE of the acceleration field: the solid domain "
-       "assembles -rho*b into the external force (formats.md 1.9; checked against CalculiX by a run), so the "
+       "assembles -rho*b into the external force (docs/formats.md, FEBio; checked against CalculiX by a run), so the "
        "vector below is minus the gravity";
   out << "  <Loads>\n";
   comment(out, "    ", c.str());
@@ -298,7 +313,7 @@ std::vector<std::string> collect_notes(const Model& model, const FebioOptions& o
     if (worst >= 10.0)
       notes.push_back("FEBio: tet4 with nearly incompressible tissue ('" + who + "', K/mu = " + shortest_decimal(std::round(worst)) +
                       ") locks (too stiff); prefer tet10, or a SolidDomain type=\"ut4-solid\" / "
-                      "\"three-field-solid\" (formats.md 1.5)");
+                      "\"three-field-solid\" (FEBio User's Manual 4, MeshDomains section)");
   }
   const std::string solver = options.linear_solver;
   if ((solver.empty() || solver == "skyline") && model.nodes.size() >= 10000) {

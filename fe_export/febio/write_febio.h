@@ -1,38 +1,26 @@
-// FEBio model file, spec version 4.0 (formats.md §1; FEBio 4.x reads it).
+// FEBio model file, specification 4.0, read by FEBio 4.x (FEBio User's Manual, version 4, "The
+// FEBio Input File"; docs/formats.md, "FEBio").
 //
-// Layout: Module solid; Control (STATIC, time_steps = load_steps, step_size 1/load_steps, default
-// time stepper with cut-backs down to dtmin = min_step_fraction, full Newton (BFGS max_ups 0,
-// max_refs = max_newton_iterations) with dtol/etol/rtol from AnalysisSettings; max_load_steps has
-// no FEBio equivalent); Material (one per tissue, named after it, with density); Mesh (Nodes "all"
-// ids 1..N = model node index + 1, one Elements block per tissue named after it, tet4 or tet10,
-// NodeSets, Surfaces tri3/tri6 for face sets); MeshDomains (SolidDomain name = block, mat =
-// material name); Boundary (`zero displacement` per fixed set; sliding sets, below); Loads
-// (`body_load` type `const` with the NEGATIVE of the gravity acceleration: FEBio's sign
-// convention, §1.9); LoadData (linear ramp 0 -> 1); Output (plotfile displacement + stress,
-// logfile node_data ux;uy;uz into "<title>_disp.txt", title reduced to [A-Za-z0-9_.-] and 99
-// characters, "model" when empty). FEBio's own XMLReader copies attribute values into 128-char
-// buffers and does not expand entities (FEBioXML/XMLReader.h/.cpp): names (identifiers, see
-// validate_model) must have at most 127 characters; comments are ASCII without "--".
-// Laws (§0): NeoHookean -> Mooney-Rivlin c1 = C10, c2 = 0, k = K, pressure_model Abaqus;
-// MooneyRivlin -> same with c2 = C01; Ogden -> Ogden c_i = 2 mu_i, m_i = alpha_i, k = K,
-// pressure_model Abaqus; CompressibleNeoHookean -> neo-Hookean E, v. All exact.
+// Sections: Module solid; Control (STATIC, time_steps = load_steps, step_size 1/load_steps,
+// cut-backs down to dtmin = min_step_fraction, full Newton with max_refs = max_newton_iterations,
+// dtol/etol/rtol from AnalysisSettings; max_load_steps has no FEBio equivalent); one Material per
+// tissue, named after it, with its density; Mesh (Nodes "all" with ids = model node index + 1, one
+// Elements block per tissue, tet4 or tet10, NodeSets, Surfaces tri3/tri6 for face sets);
+// MeshDomains; Boundary; Loads (`body_load` type `const` holding the NEGATIVE of the gravity
+// acceleration, FEBio's sign convention); LoadData (linear ramp 0 -> 1); Output (plot file with
+// displacement and stress, log file ux;uy;uz in "<title>_disp.txt", the title reduced to
+// [A-Za-z0-9_.-] and 99 characters, "model" when empty). Numbers in the model's unit system.
+// Laws, all exact: NeoHookean -> Mooney-Rivlin c1 = C10, c2 = 0, k = K, pressure_model Abaqus;
+// MooneyRivlin -> the same with c2 = C01; Ogden -> Ogden c_i = 2 mu_i, m_i = alpha_i, k = K,
+// pressure_model Abaqus; CompressibleNeoHookean -> neo-Hookean E, v.
 //
-// Element ids: the file numbers elements 1..E contiguously in block order — all elements of
-// tissue 1 in model order, then tissue 2, ... (febio_element_ids gives the map). They equal
-// model index + 1 only when the model is already grouped by tissue. Reason: the 4.0 reader keeps
-// the file ids (FEBioMeshDomainsSection4.cpp, el.SetID(domElement.id)), but FEBModel::BuildPart
-// with buildDomains (used by other FEBio import paths) renumbers elements 1, 2, ... in file
-// order, ignoring the ids; ids that increase within and across blocks without gaps are the same
-// under both, so plot/log element ids never depend on the reader path.
+// Element ids: 1..E contiguously in block order (all elements of tissue 1 in model order, then
+// tissue 2, ...; febio_element_ids gives the map), i.e. model index + 1 when the model is grouped
+// by tissue, as build_model makes it.
 //
-// Sliding sets (n.u = 0 per node): a set whose normals are all parallel to one axis
-// (|n_i| > 1 - 1e-9) becomes `zero displacement` on that one dof. Every other sliding node gets
-// FEBio `<bc type="linear constraint">` (parent dof = sum value_j * child dof_j, offset 0;
-// FEBioXML/FEBioBoundarySection3.cpp ParseLinearConstraint, FECore/FELinearConstraintManager.cpp
-// Update): the node's normals from all its oblique sets, with dofs already fixed by axis sets
-// removed, are reduced by complete pivoting; each independent row gives one constraint whose
-// parent is its pivot dof (largest coefficient). A parent dof is never a child or a fixed dof
-// (FELinearConstraintManager::Activate refuses that). Nodes of fixed sets get no constraint.
+// Sliding sets (n . u = 0 per node): a set whose normals are all parallel to one axis
+// (|n_i| > 1 - 1e-9) becomes `zero displacement` on that dof; every other sliding node gets one
+// `linear constraint` boundary condition per independent normal. Nodes of fixed sets get none.
 #pragma once
 
 #include "core/model.h"

@@ -1,3 +1,7 @@
+// Why dlopen: libgmsh brings ~60 shared libraries (OpenCASCADE, FLTK, X11, image codecs) whose
+// relocations the dynamic loader processes before main(), which costs several times the start-up
+// of everything else tissuemesh links. Linked, every command would pay it, also `solve`, `mesh`
+// and `--version`; loaded on demand, only a .msh export or `check --gmsh` does.
 #include "fe_export/gmsh/gmsh_sdk.h"
 
 #include <gmshc.h>

@@ -1,12 +1,6 @@
 // The few Gmsh SDK calls tissuemesh makes (the .msh writer and the Gmsh quality check), through
-// the SDK's C API in libgmsh, which is loaded at the first call (dlopen) instead of at start-up.
-//
-// Why: libgmsh brings ~60 shared libraries (OpenCASCADE, FLTK, X11, image codecs) whose
-// relocations the dynamic loader processes before main(): measured 0.17-0.19 s for a program that
-// only links libgmsh against 0.02-0.04 s for one that links the VTK, CHOLMOD, TetGen and yaml-cpp
-// libraries tissuemesh also uses, and `tissuemesh --version` 0.27-0.29 s linked against
-// 0.02-0.03 s loading on demand (2-core machine, 2026-11-26). Every command paid it, also
-// `solve`, `mesh` and `--version`; now only a .msh export or `check --gmsh` does.
+// the SDK's C API in libgmsh, which is loaded at the first call (dlopen) instead of at start-up
+// (the .cpp says why).
 //
 // Contract: every function throws GmshError with Gmsh's own message when the call fails, and when
 // libgmsh cannot be loaded (the message then names the library and the loader's reason). Sizes and

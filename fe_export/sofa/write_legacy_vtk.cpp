@@ -1,4 +1,5 @@
-// Legacy VTK 4.2 ASCII unstructured grid for SOFA's MeshVTKLoader (formats.md §3.2, §5).
+// Legacy VTK 4.2 ASCII unstructured grid for SOFA's MeshVTKLoader (VTK File Formats, "Simple
+// Legacy Formats"; docs/formats.md, "SOFA").
 #include "fe_export/sofa/write_sofa.h"
 
 #include "fe_export/text_format.h"

@@ -1,5 +1,11 @@
-// SOFA scene writer (formats.md §3). Everything that can refuse the model (version, Ogden, curved
-// sliding sets) is checked before the first character is written.
+// SOFA scene writer (docs/formats.md, "SOFA"). Everything that can refuse the model (version,
+// Ogden, curved sliding sets) is checked before the first character is written.
+//
+// Why the component names: the older names ProjectToPlaneConstraint and FixedConstraint are
+// deprecated in SOFA v24.06 and removed in v25.06 (SOFA sources: ComponentChange.cpp,
+// PlaneProjectiveConstraint.cpp), so the scene uses PlaneProjectiveConstraint and
+// FixedProjectiveConstraint, which both versions know. PlaneProjectiveConstraint also projects
+// positions onto its plane, hence only coplanar sliding sets are written.
 #include "fe_export/sofa/write_sofa.h"
 
 #include "core/errors.h"
@@ -21,8 +27,9 @@ std::string vec3(const Eigen::Vector3d& v) {
   return shortest_decimal(v.x()) + " " + shortest_decimal(v.y()) + " " + shortest_decimal(v.z());
 }
 
-// Plugin of every component the scene may use (formats.md §3.2; PlaneProjectiveConstraint is
-// registered in Sofa.Component.Constraint.Projective, PlaneProjectiveConstraint.cpp).
+// Plugin of every component the scene may use (SOFA documentation, "Components";
+// PlaneProjectiveConstraint is registered in Sofa.Component.Constraint.Projective,
+// PlaneProjectiveConstraint.cpp).
 const char* plugin_of(const std::string& component) {
   static const std::array<std::pair<const char*, const char*>, 11> kPlugins{{
       {"NewtonRaphsonSolver", "Sofa.Component.ODESolver.Backward"},
@@ -153,7 +160,7 @@ std::vector<std::string> write_sofa(const Model& model, std::ostream& scene, con
     notes.push_back("SOFA: " + list +
                     " written as SOFA MooneyRivlin, whose volumetric energy is K/2 (ln J)^2 instead of "
                     "K/2 (J-1)^2: identical deviatoric response, results differ slightly where volume changes "
-                    "(about 0.5% of the displacement at K/mu = 50, formats.md §3)");
+                    "(about 0.5% of the displacement at K/mu = 50, docs/formats.md, SOFA)");
   }
   if (model.order == ElementOrder::Quadratic)
     notes.push_back("SOFA: the tet10 model is written as its linear tets (corner nodes only): SOFA's "
