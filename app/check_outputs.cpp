@@ -1,3 +1,6 @@
+// Why: the check writes the Abaqus deck (fe_export) and runs the built-in solver (solver_check),
+// and solver_check must not depend on fe_export (docs/architecture.md, "Modules"), so it lives in
+// the program, not in either library.
 #include "app/check_outputs.h"
 
 #include "app/cli_support.h"

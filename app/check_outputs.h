@@ -1,8 +1,6 @@
-// The CalculiX cross-check (issue #4): the same model solved by CalculiX and by the built-in
-// solver, node by node. Shared by `check --calculix` and `demo`.
-//
-// It lives in app/ because it writes the Abaqus deck (fe_export) and runs the solver
-// (solver_check), and solver_check must not depend on fe_export (DESIGN.md's module table).
+// The CalculiX cross-check: the same model solved by CalculiX (ccx) and by the built-in solver,
+// displacements compared node by node (docs/verification.md, "Solver: agreement with CalculiX").
+// Shared by `check --calculix` and `demo`.
 #pragma once
 
 #include "app/job_config.h"

@@ -1,8 +1,9 @@
 // What every subcommand shares: exception -> exit code mapping, progress printing, the run record.
 //
-// Exit codes (the contract of DESIGN.md): 0 success, 2 bad input (InputError, OutputError, a
-// missing file, a bad option), 1 failure on valid input (SolverError, printed as it is: e.g. a
-// solve that did not converge) and internal failure (anything else, printed as "internal failure").
+// Exit codes (docs/commands.md, "Behaviour common to every command"): 0 success, 2 bad input
+// (InputError, OutputError, a missing file, a bad option), 1 failure on valid input (SolverError,
+// printed as it is: e.g. a solve that did not converge) and internal failure (anything else,
+// printed as "internal failure").
 #pragma once
 
 #include "core/number_format.h"  // format_double, used by every command

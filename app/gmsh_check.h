@@ -1,4 +1,4 @@
-// The Gmsh quality cross-check (issue #6): our own element shape measures (quality/mesh_quality.h)
+// The Gmsh quality cross-check: our own element shape measures (quality/mesh_quality.h)
 // against the Gmsh SDK's on the same mesh. Used by `check --gmsh`.
 //
 // Per tet, Gmsh's gamma is compared with our radius ratio 3r/R and Gmsh's SICN with ours; per

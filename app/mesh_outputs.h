@@ -21,10 +21,12 @@ TetMesh mesh_into(const LabelImage& labels, const std::string& image_name, const
                const nlohmann::json& inputs, const std::string& command_line, Progress& progress,
                OutputDir& out);
 
-/// The surface pipeline (issues #5, #6): stages DIR/surface.vtp (triangles with label_p, label_q),
-/// DIR/junctions.vtp (junction polylines), DIR/mesh.vtu (the tet mesh of that surface, same cell
-/// data as the direct pipeline's), DIR/report.json and DIR/report.txt, and prints the report. Does not commit `out`. Throws MeshingError when the surface fails its checks (closed,
-/// oriented, intersection free, stored once): such a surface must not reach a volume mesher.
+/// The surface pipeline (docs/surface-pipeline.md): stages DIR/surface.vtp (triangles with
+/// label_p, label_q), DIR/junctions.vtp (junction polylines), DIR/mesh.vtu (the tet mesh of that
+/// surface, same cell data as the direct pipeline's), DIR/report.json and DIR/report.txt, and
+/// prints the report. Does not commit `out`. Throws MeshingError when the surface fails its checks
+/// (closed, oriented, intersection free, stored once): such a surface must not reach a volume
+/// mesher.
 void surface_into(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
                   const nlohmann::json& inputs, const std::string& command_line, Progress& progress, OutputDir& out);
 

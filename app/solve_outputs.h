@@ -1,4 +1,5 @@
 // Solving a model with the built-in solver into an output folder: shared by `solve` and `demo`.
+// The files (docs/formats.md, "VTU"; docs/solver.md, "Outputs"):
 //
 // DIR/solution.vtu — the model VTU (write_model_vtu: same points in the same order as model.vtu
 //   and the node ids of model.inp / model.feb minus 1, same cells, tissue_id, material arrays,

@@ -1,14 +1,14 @@
-// The TetGen cross-check (issue #6): the geometry of a tet mesh meshed again by TetGen, and the two
-// meshes compared. Used by `check --tetgen`.
+// The TetGen cross-check (docs/verification.md, "Cross-check with TetGen"): the geometry of a tet
+// mesh meshed again by TetGen, and the two meshes compared. Used by `check --tetgen`.
 //
 // The multi-material surface of MESH (every boundary and interface face once, with its two
 // regions; quality/mesh_interfaces.h) goes to the TetGen backend (volume/tetgen_mesher.h, the
 // config's `tetgen:` keys) with the input faces kept, so both meshes bound the same tissues with
 // the same triangles. Compared per tissue: volumes, tets, nodes, dihedral statistics; per
 // interface: areas; the radius-edge ratio against the configured bound and against the bound the
-// input triangles force on both meshes (volume/forced_radius_edge.h); then the model of each mesh (the config's materials, node and face sets,
-// gravity) is solved with the built-in solver and the volume-mean displacement of the target
-// tissue (the tumor) compared.
+// input triangles force (volume/forced_radius_edge.h); and, with the config's model solved on
+// each mesh by the built-in solver under gravity, the volume-mean displacement of the target
+// tissue.
 #pragma once
 
 #include "app/job_config.h"

@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# Benchmark of the surface pipeline (issues #5, #6) on the default phantom with configs/paper-21k.yaml and
-# paper-2k.yaml: median over N runs (default 5) of the extraction (label check + island absorption and repair + surface nets), of
-# the remeshing (the stages "projection onto the extracted surface" and "surface remeshing"; before
-# 2026-11-25 the projection's construction, ~0.2 s at 21K, was in no stage and not counted) and of the volume meshing (CGAL Mesh_3 from the surface: pieces, protection,
-# refinement, optimisation, extraction), from each run's report.json timings, and of the whole command's
-# wall time (which also includes reading, quality and Hausdorff measurements and writing). Targets:
-# extraction + remeshing under 5 s (#5); extraction + remeshing + volume under 10 s at 21K (#6).
-# Before each run the fixed machine reference (bench/machine_reference.cpp, ~1 s on the machine of
-# 2026-11-28) runs once; the table gives its median and extraction + remeshing as a ratio to it
-# (the ratio of the medians), which compares runs on machines of different speed. Usage:
+# Benchmark of the surface pipeline (docs/surface-pipeline.md) on the default phantom with
+# configs/paper-21k.yaml and paper-2k.yaml: median over N runs (default 5) of the extraction (label
+# check + island absorption and repair + surface nets), of the remeshing (the stages "projection
+# onto the extracted surface" and "surface remeshing") and of the volume meshing (CGAL Mesh_3 from
+# the surface: pieces, protection, refinement, optimisation, extraction), from each run's
+# report.json timings, and of the whole command's wall time (which also includes reading, quality
+# and Hausdorff measurements and writing). Speed goals: extraction + remeshing under 5 s;
+# extraction + remeshing + volume under 10 s at 21K.
+# Before each run the fixed machine reference (bench/machine_reference.cpp, about 1 s) runs once;
+# the table gives its median and extraction + remeshing as a ratio to it (the ratio of the
+# medians), which compares runs on machines of different speed. Usage:
 # bench/bench_surface.sh [runs] (after scripts/build.sh). Prints a Markdown table for
 # bench/RESULTS.md. Needs python3.
 set -euo pipefail

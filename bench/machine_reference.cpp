@@ -1,7 +1,6 @@
 // machine_reference: a fixed workload that does not depend on tissuemesh's code, timed by the
 // bench scripts in the same run as tissuemesh, so that a time can be given as a ratio to it as
-// well as in seconds (DESIGN.md: speed targets are ratios against a reference measured in the
-// same run). Instances of the same machine kind were measured to differ by up to ~2.3x in speed
+// well as in seconds. Instances of the same machine kind differ in speed by up to about 2.5x
 // (bench/RESULTS.md), which an absolute time alone cannot tell from a change of the code.
 //
 // The workload: TetGen 1.5 (the Debian library, a fixed version) builds the Delaunay

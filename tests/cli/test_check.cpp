@@ -168,7 +168,7 @@ TEST_F(Check, TetgenMeshesTheSameGeometryAndMovesTheTumorAlike) {
     EXPECT_NEAR(record["tissues"][i]["tetgen"]["volume_mm3"].get<double>(), volumes[i],
                 test::kRelativeRoundoff * volumes[i]);
   }
-  // The radius-edge figures (issue #6 asks TetGen's mesh for <= 2) are those of the mesh written.
+  // The radius-edge figures (TetGen's -q bound is 2 by default) are those of the mesh written.
   const QualityReport tg_quality = compute_quality(tg);
   const auto& total = record["tissues"][3];
   ASSERT_EQ(total["tissue"], "all tissues");
@@ -214,7 +214,8 @@ TEST_F(Check, TetgenMeshesTheSameGeometryAndMovesTheTumorAlike) {
     EXPECT_NEAR(f["tetgen_area_mm2"].get<double>(), f["mesh_area_mm2"].get<double>(),
                 test::kRelativeRoundoff * f["mesh_area_mm2"].get<double>())
         << f["interface"];
-  // Issue #6's bound: the tumor's mean displacement under gravity within 5 % between the meshes.
+  // The cross-mesh bound: the tumor's mean displacement under gravity within 5 % between the meshes
+  // (docs/verification.md, "Cross-check with TetGen").
   const double d = record["target"]["difference_percent"];
   std::cout << "[ check    ] block: tumor mean displacement differs by " << d << " % between the meshes\n";
   EXPECT_LE(d, 100.0 * test::kCrossMeshDisplacementRel);

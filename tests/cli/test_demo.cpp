@@ -1,8 +1,8 @@
 // `tissuemesh demo` end to end on the default phantom: the acceptance figures of the direct
-// pipeline and of the built-in solver against CalculiX (issue #4: max nodal difference <= 1% of the
-// max displacement, tet4 on the default phantom, tet10 on the coarse one), measured on what the
-// demo leaves on disk. Slow (the default demo's CalculiX run takes ~2 min, the coarse tet10 one
-// ~75 s); CI runs them.
+// pipeline and of the built-in solver against CalculiX (max nodal difference <= 1% of the max
+// displacement, tet4 on the default phantom, tet10 on the coarse one; docs/verification.md,
+// "Solver: agreement with CalculiX"), measured on what the demo leaves on disk. Slow (the default
+// demo's CalculiX run takes ~2 min, the coarse tet10 one ~75 s); CI runs them.
 #include "cli/cli_runner.h"
 #include "core/vtu_io.h"
 #include "quality/conformity.h"
@@ -68,7 +68,7 @@ TEST(Demo, PhantomMeshIsConformingWithFaithfulVolumes) {
                             "run CalculiX done in", "max displacement", "tumour centroid displacement",
                             "reaction vs weight", "difference vs CalculiX"})
     EXPECT_NE(r.out.find(stage), std::string::npos) << stage;
-  // Acceptance of issue #4 on the default phantom, tet4.
+  // Agreement with CalculiX on the default phantom, tet4.
   expect_agreement_with_calculix(dir / "demo", "default phantom");
 
   // Conformity recomputed independently of the report, from the written file.
@@ -112,8 +112,8 @@ TEST(Demo, SameRunSameMesh) {
 }
 
 TEST(Demo, CoarseTet10AgreesWithCalculix) {
-  // Acceptance of issue #4 with quadratic elements: the coarse phantom (configs/phantom-coarse.yaml)
-  // as tet10 (~15K nodes; CalculiX ~75 s).
+  // Agreement with CalculiX with quadratic elements: the coarse phantom
+  // (configs/phantom-coarse.yaml) as tet10 (~15K nodes; CalculiX ~75 s).
   if (find_calculix().empty()) GTEST_SKIP() << "ccx not found (set TISSUEMESH_CCX or put ccx on PATH)";
   const auto dir = test::scratch_dir();
   const auto r = test::run_cli("demo -c " + test::coarse_config(dir, "tet10") + " --out demo", dir);

@@ -1,4 +1,5 @@
-// Unit systems: the values of formats.md §4 and the weight-per-volume consistency of every system.
+// Unit systems: the values of docs/formats.md ("Conventions shared by every file", units of model
+// files) and the weight-per-volume consistency of every system.
 #include "core/unit_system.h"
 #include "support/test_helpers.h"
 #include "support/tolerances.h"

@@ -1,5 +1,6 @@
-// write_abaqus read back by a small independent .inp reader (formats.md §2.1-2.2): the mesh, the
-// sets, the materials and the step must be what the Model says, in CalculiX's syntax limits.
+// write_abaqus read back by a small independent .inp reader (docs/formats.md, "Abaqus / CalculiX"):
+// the mesh, the sets, the materials and the step must be what the Model says, in CalculiX's syntax
+// limits.
 #include "fe_export/abaqus/write_abaqus.h"
 
 #include "core/errors.h"
@@ -234,7 +235,8 @@ void expect_round_trip(const Model& model, const Inp& inp) {
     }
     EXPECT_EQ(read, expected) << s.name;
   }
-  // CalculiX's line rules (formats.md §2.1, and ccx reads reals as f20.0 of the first 20 chars).
+  // CalculiX's line rules (docs/formats.md, "Abaqus / CalculiX"; ccx reads reals as f20.0 of the
+  // first 20 chars).
   EXPECT_LE(inp.max_entries, 16u);
   EXPECT_LE(inp.longest_real, 20u);
 }
@@ -338,7 +340,8 @@ TEST(Abaqus, OgdenTermsAndDataLines) {
   ASSERT_EQ(two.data[0].size(), expected2.size());
   for (std::size_t i = 0; i < expected2.size(); ++i)
     EXPECT_NEAR(number(two.data[0][i]), expected2[i], test::kRelativeRoundoff * std::abs(expected2[i])) << i;
-  // N=3: 8 values on the first line (mu1..alpha3, D1, D2), D3 on the second (formats.md §2.2).
+  // N=3: 8 values on the first line (mu1..alpha3, D1, D2), D3 on the second (CalculiX CrunchiX
+  // User's Manual 2.20, *HYPERELASTIC).
   model.materials[2].ogden.push_back({100.0, 5.0});
   model.materials[2].mu_Pa += 100.0;  // mu = sum of mu_i
   const Card three = tumor(write(model).inp);

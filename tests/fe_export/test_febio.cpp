@@ -1,6 +1,7 @@
 // FEBio writer: the .feb is read back with VTK's XML parser (expat; independent of the writer) and
-// checked against the format facts of formats.md §1 and against the Model; plus the acceptance
-// test that FEBio Mooney-Rivlin (c2 = 0, Abaqus pressure) and Abaqus NEO HOOKE are one energy.
+// checked against the FEBio 4.0 format rules (FEBio User's Manual, version 4, "The FEBio Input
+// File"; docs/formats.md, "FEBio") and against the Model; plus the acceptance test that FEBio
+// Mooney-Rivlin (c2 = 0, Abaqus pressure) and Abaqus NEO HOOKE are one energy.
 #include "fe_export/abaqus/write_abaqus.h"
 #include "fe_export/febio/write_febio.h"
 #include "materials/make_law.h"
@@ -131,7 +132,7 @@ TEST(FebioExport, RootModuleAndSectionOrder) {
   for (auto* s : kids(f->root)) names.push_back(s->GetName());
   const std::vector<std::string> order{"Module", "Control", "Material", "Mesh", "MeshDomains",
                                        "Boundary", "Loads", "LoadData", "Output"};
-  EXPECT_EQ(names, order);  // formats.md §1.2; Module first (§1.1)
+  EXPECT_EQ(names, order);  // FEBio User's Manual 4, "The FEBio Input File"; Module first
   EXPECT_EQ(attr(f->root->GetNestedElement(0), "type"), "solid");
 }
 
@@ -274,7 +275,7 @@ TEST(FebioExport, MaterialParametersAreValidForTheirType) {
       {"neo-Hookean", {"density", "E", "v"}},
       {"Mooney-Rivlin", {"density", "c1", "c2", "k", "pressure_model"}},
       {"Ogden", {"density", "c1", "c2", "c3", "c4", "c5", "c6", "m1", "m2", "m3", "m4", "m5", "m6", "k",
-                 "pressure_model"}}};  // formats.md §1.5
+                 "pressure_model"}}};  // FEBio User's Manual 4, "Materials"
   const auto mats = kids(section(*f, "Material"), "material");
   ASSERT_EQ(mats.size(), 3u);
   const UnitSystem u = m.units;
@@ -326,8 +327,8 @@ Eigen::Vector3d body_load(const Feb& f) {
 }
 
 TEST(FebioExport, GravityIsEnteredWithFebiosSign) {
-  // formats.md §1.9: the const body load is minus the acceleration; prone gravity (0, -9.81, 0)
-  // m/s^2 in mm-t-s is (0, -9810, 0) mm/s^2, so the file holds y = +9810.
+  // docs/formats.md, "FEBio": the const body load is minus the acceleration; prone gravity (0,
+  // -9.81, 0) m/s^2 in mm-t-s is (0, -9810, 0) mm/s^2, so the file holds y = +9810.
   Model m = block_model();
   ASSERT_EQ(m.gravity.acceleration_m_s2, Eigen::Vector3d(0, -9.81, 0));
   const auto f = write_and_parse(m);
@@ -502,8 +503,8 @@ TEST(FebioExport, NotesWarnAboutTet4Locking) {
 }
 
 // ----------------------------------------------------------------------------------------------
-// Acceptance: "The same tissue written as FEBio Mooney-Rivlin (c2 = 0, pressure_model Abaqus) and as
-// Abaqus NEO HOOKE has identical energy at sample deformations".
+// Acceptance: the same tissue written as FEBio Mooney-Rivlin (c2 = 0, pressure_model Abaqus) and as
+// Abaqus NEO HOOKE has identical energy at sample deformations.
 
 struct Invariants {
   double J, I1bar, I2bar;

@@ -1,5 +1,6 @@
-// SOFA is not installed: the scene is checked rule by rule (formats.md §3) after parsing it with
-// VTK's XML parser, and its companion legacy VTK mesh is read back with VTK's legacy reader.
+// SOFA is not installed: the scene is checked rule by rule (docs/formats.md, "SOFA") after parsing
+// it with VTK's XML parser, and its companion legacy VTK mesh is read back with VTK's legacy
+// reader.
 #include "core/errors.h"
 #include "fe_export/sofa/write_sofa.h"
 #include "support/model_fixture.h"
@@ -28,10 +29,10 @@ namespace {
 using test::BlockModelOptions;
 using test::block_model;
 
-// Plugin of each component, formats.md §3.2 (PlaneProjectiveConstraint: registered in
-// Sofa/Component/Constraint/Projective/.../PlaneProjectiveConstraint.cpp). DefaultAnimationLoop
-// lives in Sofa.Simulation.Core and needs no plugin.
-// Grouped by plugin (the writer keeps the inverse table): the test's own record of formats.md.
+// Plugin of each component (SOFA documentation, "Components"; PlaneProjectiveConstraint: registered
+// in Sofa/Component/Constraint/Projective/.../PlaneProjectiveConstraint.cpp). DefaultAnimationLoop
+// lives in Sofa.Simulation.Core and needs no plugin. Grouped by plugin (the writer keeps the
+// inverse table): the test's own record of that list.
 const std::map<std::string, std::set<std::string>> kComponentsOf{
     {"Sofa.Component.ODESolver.Backward", {"NewtonRaphsonSolver", "StaticSolver"}},
     {"Sofa.Component.LinearSolver.Direct", {"SparseLDLSolver"}},

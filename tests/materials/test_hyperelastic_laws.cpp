@@ -1,5 +1,6 @@
 // Hyperelastic laws: stress and tangent against finite differences of the energy, zero stress in
-// the reference state, and homogeneous uniaxial stress against biomech.md §3.1's reference values.
+// the reference state, and homogeneous uniaxial stress against tabulated reference values
+// (docs/verification.md, "Solver: analytic references").
 #include "materials/elastic_constants.h"
 #include "materials/hyperelastic_law.h"
 #include "materials/tensor4.h"
@@ -120,8 +121,9 @@ TEST(HyperelasticLaws, ReferenceAndRigidRotationAreStressFree) {
 }
 
 TEST(HyperelasticLaws, UniaxialStressMatchesReferenceValues) {
-  // biomech.md §3.1, mu = 1000 Pa, nu = 0.49: P11 and lateral stretch, given to 3 decimals
-  // (6-7 significant digits) there, so 1e-3 Pa and 1e-6 are the comparison resolution.
+  // The uniaxial table (docs/verification.md, "Solver: analytic references"), mu = 1000 Pa,
+  // nu = 0.49: P11 and lateral stretch, given to 3 decimals (6-7 significant digits) there, so
+  // 1e-3 Pa and 1e-6 are the comparison resolution.
   const auto e = ElasticConstants::from_shear_bulk(1000.0, 2 * 1000.0 * 1.49 / (3 * 0.02));
   const auto febio = make_compressible_neo_hookean(e.shear_modulus(), e.lame_lambda());
   const auto abaqus = make_uncoupled_mooney_rivlin(e.neo_hooke_C10(), 0.0, e.bulk_modulus());

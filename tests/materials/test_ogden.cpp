@@ -1,7 +1,8 @@
 // Uncoupled Ogden: stress and tangent against finite differences (generic C, C = I, two equal
 // eigenvalues and a sweep of eigenvalue gaps across the coincidence threshold), the special cases
 // alpha = 2 (neo-Hookean) and alpha = -2 (Mooney-Rivlin C01), additivity of terms, the reference
-// state, and homogeneous uniaxial stress against a closed form and biomech.md §3.1.
+// state, and homogeneous uniaxial stress against a closed form and tabulated reference values
+// (docs/verification.md, "Solver: analytic references").
 #include "core/errors.h"
 #include "materials/hyperelastic_law.h"
 #include "materials/tensor4.h"
@@ -278,8 +279,9 @@ TEST(OgdenLaw, UniaxialStressMatchesClosedForm) {
 }
 
 TEST(OgdenLaw, UniaxialStressMatchesNeoHookeanReferenceValues) {
-  // biomech.md §3.1, the "NiftySim (J-1)^2, nu = 0.49" column (mu = 1000 Pa): Ogden N = 1,
-  // alpha = 2 is that energy. Values quoted to 6-7 significant digits.
+  // The uniaxial table's "NiftySim (J-1)^2, nu = 0.49" column (mu = 1000 Pa; docs/verification.md,
+  // "Solver: analytic references"): Ogden N = 1, alpha = 2 is that energy. Values quoted to 6-7
+  // significant digits.
   const double mu = 1000.0, K = 2.0 * mu * 1.49 / (3.0 * 0.02);
   const auto law = make_uncoupled_ogden({mu}, {2.0}, K);
   const struct {

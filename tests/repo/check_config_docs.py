@@ -47,7 +47,7 @@ def main():
         doc = yaml.safe_load(text)
         sections.update(doc.keys())
         key_paths(doc, "", keys)
-    reference = open(os.path.join(ROOT, "docs", "configuration.md"), encoding="utf-8").read()
+    reference = open(os.path.join(ROOT, "docs/configuration.md"), encoding="utf-8").read()
     documented = set(re.findall(r"^\|\s*`([^`]+)`", reference, re.M))
     findings = [f"docs/configuration.md: key `{k}` is not documented" for k in sorted(keys)
                 if k not in documented and f"`{k}`" not in reference]
@@ -58,7 +58,7 @@ def main():
 
     help_text = subprocess.run([EXE, "--help"], check=True, capture_output=True, text=True).stdout
     commands = re.findall(r"^  (\w+)\s{2,}", help_text.split("Subcommands:")[1], re.M)
-    commands_doc = open(os.path.join(ROOT, "docs", "commands.md"), encoding="utf-8").read()
+    commands_doc = open(os.path.join(ROOT, "docs/commands.md"), encoding="utf-8").read()
     readme = open(os.path.join(ROOT, "README.md"), encoding="utf-8").read()
     for c in commands:
         if not re.search(rf"^#+ .*`?tissuemesh {c}\b", commands_doc, re.M) and \

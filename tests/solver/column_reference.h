@@ -1,16 +1,16 @@
 // 1-D reference solutions of the solver verification suite (tests/solver/test_verification.cpp),
-// computed here from closed-form principal stresses, independently of materials/ and
-// solver_check/ (reference/biomech.md §3.1 and §3.3 give the formulas and the tables they are
-// checked against).
+// computed here from closed-form principal stresses (Holzapfel, "Nonlinear Solid Mechanics",
+// 2000), independently of materials/ and solver_check/, and checked against tabulated values in
+// that test (docs/verification.md, "Solver: analytic references").
 //
 // Laws (core/material_spec.h), principal first Piola-Kirchhoff stress P_i = dW/d lambda_i of
 // F = diag(l1, l2, l3), J = l1 l2 l3, I1 = l1^2 + l2^2 + l3^2:
 //   CompressibleNeoHookean (lnJ):  P_i = mu (l_i - 1/l_i) + lambda_L ln J / l_i,  lambda_L = K - 2mu/3
 //   NeoHookean ((J-1)^2):          P_i = mu J^(-2/3) (l_i - I1 / (3 l_i)) + K (J - 1) J / l_i
-// Confined column (§3.3): F = diag(1, 1, a(s)) along the column axis; equilibrium P_axial(a(s)) =
+// Confined column: F = diag(1, 1, a(s)) along the column axis; equilibrium P_axial(a(s)) =
 // sign * rho g s, s the distance from the free end (sign +1 hanging/tension, -1 standing/
 // compression); the free end moves by Delta = int_0^L (a - 1) ds relative to the support.
-// Uniaxial stress (§3.1): F = diag(lambda, b, b) with P_lateral(lambda, b) = 0.
+// Uniaxial stress: F = diag(lambda, b, b) with P_lateral(lambda, b) = 0.
 //
 // Everything in consistent SI units (Pa, N/m^3, m). Root finding is bisection to the last bit
 // (every P above increases strictly with its own stretch on the bracketed ranges), quadrature
@@ -39,7 +39,7 @@ struct UniaxialState {
 };
 UniaxialState uniaxial_stress(MaterialLaw law, double mu, double K, double lambda);
 
-/// The confined column of §3.3 (exact 3D solution with frictionless lateral rollers).
+/// The confined column (exact 3D solution with frictionless lateral rollers).
 class ConfinedColumn {
  public:
   /// rho_g: weight per volume (N/m^3); sign +1 hanging (tension), -1 standing (compression).

@@ -1,4 +1,4 @@
-// Built-in solver, element level (issue #4; biomech.md §3.1): tet4/tet10 shape functions and
+// Built-in solver, element level (docs/solver.md, "Elements"): tet4/tet10 shape functions and
 // quadrature, consistent body force, and the total-Lagrangian kernel (rigid motions, affine patch,
 // tangent and force against finite differences, energy conjugacy, inversion flag).
 #include "core/errors.h"

@@ -1,12 +1,13 @@
-// Solver-level verification of the built-in static solver (issue #4) against exact solutions
-// (reference/biomech.md §3):
-//   1. the finite-strain confined column (§3.3): exact 3D solution F = diag(1, 1, a(Z)) for both
+// Solver-level verification of the built-in static solver against exact solutions
+// (docs/verification.md, "Solver: analytic references"):
+//   1. the finite-strain confined column: exact 3D solution F = diag(1, 1, a(Z)) for both
 //      volumetric forms, hanging and standing; tet4 and tet10 converge to it at their rates;
-//   2. the small-strain hanging bar (§3.2): exact 3D linear solution with Poisson contraction;
-//      tet4 converges at O(h^2), tet10 reproduces the quadratic field exactly;
+//   2. the small-strain hanging bar (Timoshenko & Goodier, "Theory of Elasticity"): exact 3D linear
+//      solution with Poisson contraction; tet4 converges at O(h^2), tet10 reproduces the quadratic
+//      field exactly;
 //   3. reactions balance the weight (or each other) to kSolverEquilibriumRel in every solve;
-//   4. homogeneous uniaxial stress at structure level (§3.1 table): axial reaction / area = P11
-//      and the lateral stretch of the free faces.
+//   4. homogeneous uniaxial stress at structure level (the uniaxial table): axial reaction / area =
+//      P11 and the lateral stretch of the free faces.
 // The 1-D references come from tests/solver/column_reference.h, checked first against the tables.
 // Measured errors and rates are printed on "[ verify   ]" lines.
 #include "solver_check/static_solver.h"
@@ -35,7 +36,7 @@ namespace {
 using Eigen::Vector3d;
 using test::ConfinedColumn;
 
-// biomech.md §3.3 parameters (SI).
+// Parameters of the confined-column and uniaxial tables (SI).
 constexpr double kMu = 1000.0;   // Pa
 constexpr double kRho = 1000.0;  // kg/m^3
 constexpr double kG = 9.81;      // m/s^2
@@ -50,7 +51,7 @@ MaterialSpec neo_hookean(MaterialLaw law, double nu) {
   m.C10_Pa = law == MaterialLaw::NeoHookean ? kMu / 2.0 : 0.0;
   m.K_Pa = bulk_modulus(nu);
   m.density_kg_m3 = kRho;
-  m.source = "biomech.md §3";
+  m.source = "docs/verification.md, analytic references";
   return m;
 }
 
@@ -168,7 +169,7 @@ SolveOptions single_thread() {
 
 bool near(double a, double b) { return std::abs(a - b) <= 1e-9; }
 
-// ---- the 1-D references against biomech.md ------------------------------------------------------
+// ---- the 1-D references against the tabulated values -------------------------------------------
 
 struct ColumnRow {
   double nu;
@@ -177,7 +178,8 @@ struct ColumnRow {
 };
 
 TEST(VerificationColumnReference, ReproducesTheConfinedColumnTable) {
-  // biomech.md §3.3, L = 0.1 m, rho = 1000 kg/m^3, g = 9.81, mu = 1000 Pa.
+  // Confined-column tip displacements (mm, 4 decimals): L = 0.1 m, rho = 1000 kg/m^3, g = 9.81,
+  // mu = 1000 Pa.
   const MaterialLaw lnJ = MaterialLaw::CompressibleNeoHookean, J1 = MaterialLaw::NeoHookean;
   const ColumnRow rows[] = {{0.30, lnJ, 16.8201, -11.9122}, {0.30, J1, 15.0928, -12.7954},
                             {0.45, lnJ, 4.8459, -4.1399},   {0.45, J1, 4.4944, -4.4192},
@@ -207,7 +209,8 @@ struct UniaxialRow {
   double nu, lambda, P11_Pa, lateral, J;
 };
 
-/// biomech.md §3.1 table (mu = 1000 Pa), FEBio lnJ and NiftySim (J-1)^2, nu = 0.49.
+/// Uniaxial table (mu = 1000 Pa), FEBio lnJ and NiftySim (J-1)^2, nu = 0.49 (docs/verification.md,
+/// "Solver: analytic references").
 const UniaxialRow kUniaxialTable[] = {
     {MaterialLaw::CompressibleNeoHookean, 0.49, 1.2, 503.229, 0.914399, 1.003350},
     {MaterialLaw::CompressibleNeoHookean, 0.49, 1.5, 1052.563, 0.819241, 1.006734},
@@ -364,8 +367,8 @@ constexpr double kBarHalfWidthMm = 10.0, kBarLengthMm = 40.0, kBarNu = 0.30;
 /// Gravity (and prescribed motion) scale of the linear checks: largest strain rho g L / E * s ~ 1.5e-4.
 constexpr double kBarGravityScale = 1e-3;
 
-/// Exact linear solution (biomech.md §3.2) at full gravity: bar 0 <= z <= L hanging from z = L,
-/// gravity -z. X and u in mm.
+/// Exact linear solution (Timoshenko & Goodier, "Theory of Elasticity") at full gravity:
+/// bar 0 <= z <= L hanging from z = L, gravity -z. X and u in mm.
 Vector3d bar_exact(const Vector3d& X, double E, double nu) {
   const double x = X.x() / 1e3, y = X.y() / 1e3, z = X.z() / 1e3, L = kBarLengthMm / 1e3, b = kRhoG / E;
   return 1e3 * Vector3d(-nu * b * x * z, -nu * b * y * z, b * z * z / 2 + nu * b * (x * x + y * y) / 2 - b * L * L / 2);

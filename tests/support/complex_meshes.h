@@ -1,4 +1,4 @@
-// Shared by the volume-mesher tests of surface complexes (CGAL and TetGen, issue #6): the small
+// Shared by the volume-mesher tests of surface complexes (CGAL and TetGen): the small
 // test images remeshed to a budget, the interfaces a tet mesh has, and its per-tissue volumes.
 #pragma once
 

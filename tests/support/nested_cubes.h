@@ -1,6 +1,6 @@
 // Two nested cubes, rotated and shifted so that their large triangles cut grid cells obliquely,
 // with an exact region test: a closed two-tissue complex (outer shell = tissue 1, inner cube =
-// tissue 2) for the free-cell grid and its CGAL domain (tests/mesher/test_free_cell_*.cpp).
+// tissue 2) for the free-cell grid and its CGAL domain (tests/volume/test_free_cell_*.cpp).
 #pragma once
 
 #include "core/tri_surface.h"

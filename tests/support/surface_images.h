@@ -1,6 +1,6 @@
 // Small generated label images and their extraction, shared by the surface-pipeline tests
-// (issue #5): nested spheres on anisotropic voxels, a thin shell, and three touching boxes with a
-// triple junction.
+// (docs/surface-pipeline.md): nested spheres on anisotropic voxels, a thin shell, and three
+// touching boxes with a triple junction.
 #pragma once
 
 #include "core/label_image.h"

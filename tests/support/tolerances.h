@@ -48,7 +48,7 @@ constexpr double kExtractedSurfaceVolumeRel = 0.05;
 /// losses (chords inside convex parts). A tissue dropped or merged is off by far more.
 constexpr double kComplexMeshVolumeRel = 0.04;
 
-/// Issue #6's acceptance bound for the same tissue's mean displacement under gravity on two meshes
+/// The acceptance bound for the same tissue's mean displacement under gravity on two meshes
 /// of the same geometry (CGAL or any mesh against TetGen's): discretisation error of tet10 on two
 /// different meshes, not round-off (measured 3.4 % on the test block; tet4 locks differently on
 /// each mesh and is not held to it).
@@ -61,7 +61,7 @@ constexpr double kCrossMeshDisplacementRel = 0.05;
 constexpr double kGmshPrintedQualityAbs = 1e-6;
 
 /// Smallest dihedral angle of a CGAL mesh of a test complex after exudation, sliver flips and
-/// sliver smoothing (default VolumeMeshParams): issue #6's bound for the CGAL mesh itself;
+/// sliver smoothing (default VolumeMeshParams): the bound for the CGAL mesh itself;
 /// measured 13.1 degrees (nested spheres) and 12.6 degrees (three boxes, where a needle boundary
 /// facet beside the protected triple line kept a tet at 8.1 degrees until smoothing could slide
 /// vertices within the flat box faces).
@@ -73,7 +73,7 @@ constexpr double kComplexMeshMinDihedralDeg = 10.0;
 constexpr double kConstrainedCoordinateMm = 1e-9;
 
 /// Symmetric Hausdorff distance of a remeshed surface to the extracted one, in voxel diagonals:
-/// issue #5's acceptance bound itself (the remesher is given half of it as its approximation
+/// the acceptance bound itself (the remesher is given half of it as its approximation
 /// bound, so a test at the full bound has room for the sampled measurement, not for a real loss
 /// of shape: a collapsed sphere or a shaved junction corner is several diagonals off).
 constexpr double kRemeshHausdorffVoxelDiagonals = 1.0;
@@ -91,10 +91,11 @@ constexpr double kFiniteDifferenceRel = 1e-7;
 /// energy's gradient misses by O(1).
 constexpr double kPathIntegralRel = 1e-9;
 
-/// Reference values quoted to 6-7 significant digits (biomech.md §3.1: e.g. 501.419 Pa, 0.914705):
-/// half a unit in the last quoted digit is at most 1.0e-6 relative in those tables (501.419 Pa
-/// +- 0.0005); 2e-6 covers that rounding plus the bisection and round-off of the computed value
-/// and still catches a formula slip in the fifth digit.
+/// Reference values quoted to 6-7 significant digits (the uniaxial table of docs/verification.md,
+/// "Solver: analytic references": e.g. 501.419 Pa, 0.914705): half a unit in the last quoted digit
+/// is at most 1.0e-6 relative in those tables (501.419 Pa +- 0.0005); 2e-6 covers that rounding
+/// plus the bisection and round-off of the computed value and still catches a formula slip in the
+/// fifth digit.
 constexpr double kQuotedSixDigitsRel = 2e-6;
 
 /// CalculiX (ccx 2.20) accepts a Newton iterate when the largest residual force is at most
@@ -123,12 +124,12 @@ constexpr double kCalculixPrintRel = 1e-6;
 /// block is ~1e-13 of the load, so 1e-10 is reachable and leaves 100x below kSolverEquilibriumRel.
 constexpr double kSolverTightResidualRel = 1e-10;
 
-/// Total reaction against total weight, relative: the issue #4 acceptance figure (1e-8). A wrong
+/// Total reaction against total weight, relative: the acceptance figure (1e-8). A wrong
 /// load (a missing tissue, a wrong density or unit) or a reaction taken without the load lumped on
 /// the fixed nodes misses by >= 1e-3.
 constexpr double kSolverEquilibriumRel = 1e-8;
 
-/// Built-in solver vs CalculiX on the same deck and energy: the issue #4 acceptance figure, max
+/// Built-in solver vs CalculiX on the same deck and energy: the acceptance figure, max
 /// nodal difference <= 1% of the max displacement. Both solve the same discrete equations (same
 /// shape functions and quadrature, C3D4 1 point, C3D10 4 points), so the difference is only the
 /// convergence tolerance of each and ccx's 7 printed digits; measured values are printed.
@@ -137,15 +138,16 @@ constexpr double kCalculixSolutionRel = 0.01;
 /// Linear response at tiny loads (gravity x 1e-6 and 3e-6): the nonlinear part of the response is
 /// of relative size ~ strain ~ 1e-6 here (the full-load strain is O(1)), and Newton reaches the
 /// residual tolerance 1e-6 of the load in one or two iterations of an almost linear problem, so the
-/// ratio of the two solutions equals the load ratio to ~1e-6; 1e-4 (issue brief) keeps a 100x margin
+/// ratio of the two solutions equals the load ratio to ~1e-6; 1e-4 keeps a 100x margin
 /// while a load or stiffness that is not scaled consistently misses by O(1).
 constexpr double kSmallLoadLinearityRel = 1e-4;
 
-/// Reference values quoted to 4 decimals of a millimetre (biomech.md §3.3 confined-column table,
-/// e.g. 16.8201 mm): the table rounds to half a unit of the last digit, 5e-5 mm, and the value
-/// computed in the test (bisection + Gauss-Legendre, tests/solver/column_reference.h) is exact to
-/// ~1e-12 mm, so no further margin is needed (the largest measured gap is 4.1e-5 mm, 16.82006 vs
-/// 16.8201). A wrong volumetric form or modulus misses by 1e-2 mm or more.
+/// Reference values quoted to 4 decimals of a millimetre (the confined-column table of
+/// tests/solver/test_verification.cpp, e.g. 16.8201 mm): the table rounds to half a unit of the
+/// last digit, 5e-5 mm, and the value computed in the test (bisection + Gauss-Legendre,
+/// tests/solver/column_reference.h) is exact to ~1e-12 mm, so no further margin is needed (the
+/// largest measured gap is 4.1e-5 mm, 16.82006 vs 16.8201). A wrong volumetric form or modulus
+/// misses by 1e-2 mm or more.
 constexpr double kQuotedFourDecimalsMm = 5e-5;
 
 /// Cell stresses of a homogeneous deformation (solver_check/cell_fields.h) against the law's closed

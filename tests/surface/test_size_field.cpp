@@ -1,5 +1,6 @@
-// The remesher's size field (issue #5): the approach grading (its config keys and the size it
-// asks for around the tumor and the corridor) and the graded cap around stuck edges.
+// The remesher's size field (docs/surface-pipeline.md, "Approach grading"): the approach grading
+// (its config keys and the size it asks for around the tumor and the corridor) and the graded cap
+// around stuck edges.
 #include "core/errors.h"
 #include "surface/approach_field.h"
 #include "surface/graded_size_cap.h"
@@ -59,7 +60,7 @@ TEST(ApproachField, SizeIsRatioSmallerAtTheFocusAndGrowsBackSmoothly) {
   const ApproachGrading g = measure_grading(r.surface, field);
   ASSERT_GT(g.inside_edges, 0u);
   ASSERT_GT(g.outside_edges, 0u);
-  // Issue #5's criterion itself (deterministic: measured 0.324 here, 0.332 on the phantom).
+  // The grading criterion itself: mean edge inside the focus / beyond the falloff <= 1 / ratio.
   EXPECT_LE(g.ratio(), 1.0 / p.ratio);
 }
 

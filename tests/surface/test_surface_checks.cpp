@@ -1,6 +1,6 @@
-// The surface checks themselves (issue #5 acceptance instruments): each defect they name, built
-// by hand on tetrahedra, is found and counted, and a sound surface passes with its exact volume;
-// the re-check after moving points agrees with a full check.
+// The surface checks themselves (the surface pipeline's validity instruments): each defect they
+// name, built by hand on tetrahedra, is found and counted, and a sound surface passes with its
+// exact volume; the re-check after moving points agrees with a full check.
 #include "surface/surface_checks.h"
 #include "support/surface_images.h"
 #include "support/surface_reports.h"

@@ -1,6 +1,6 @@
-// Sampled Hausdorff distance (issue #5's geometry figure): an analytic case whose maximum lies at
-// an edge midpoint (not at a vertex, where the sampling starts), and agreement, bit for bit, with
-// the plain maximum over every sample on a remeshed surface against its extraction.
+// Sampled Hausdorff distance (the surface pipeline's geometry figure): an analytic case whose
+// maximum lies at an edge midpoint (not at a vertex, where the sampling starts), and agreement, bit
+// for bit, with the plain maximum over every sample on a remeshed surface against its extraction.
 #include "surface/surface_distance.h"
 #include "support/complex_meshes.h"
 #include "support/surface_images.h"

@@ -1,4 +1,5 @@
-// Multi-material surface extraction (issue #5): voxel repair, shared interfaces, junction curves,
+// Multi-material surface extraction (docs/surface-pipeline.md, "Multi-material surface
+// extraction"): voxel repair, shared interfaces, junction curves,
 // closedness/orientation/intersections, volumes, determinism, on small generated images.
 #include "core/errors.h"
 #include "core/surface_vtp.h"
@@ -131,9 +132,9 @@ TEST(LabelRepair, RandomLabelsAreMadeWellComposed) {
   // The independent full check must find every block sound, with every change a raise.
   std::mt19937 rng(5);
   std::uniform_int_distribution<int> label(0, 3);
-  // The relabelled counts, passes and a hash of the result are those of the repair before it
-  // skipped unchanged blocks (full passes, commit aa05a11) on the same images: the same fixes in
-  // the same order.
+  // The relabelled counts, passes and a hash of the result are those of a repair that re-checks
+  // every block in every pass (full passes) on the same images: skipping unchanged blocks must make
+  // the same fixes in the same order.
   const std::size_t relabelled[3] = {1806, 1829, 1835};
   const int passes[3] = {6, 7, 6};
   const std::uint64_t hashes[3] = {0x95e6bd02e823a647ull, 0xf2b2ee20d0729c39ull, 0x3c0ce558bbf82f72ull};

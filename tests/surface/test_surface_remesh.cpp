@@ -1,5 +1,6 @@
-// Controlled-resolution remeshing of the multi-material surface (issue #5, step 2): budget,
-// closedness, shared interfaces, junction preservation, distance to the input, determinism.
+// Controlled-resolution remeshing of the multi-material surface (docs/surface-pipeline.md,
+// "Remeshing to a vertex budget"): budget, closedness, shared interfaces, junction preservation,
+// distance to the input, determinism.
 #include "core/errors.h"
 #include "surface/remesh_complex.h"
 #include "surface/surface_checks.h"

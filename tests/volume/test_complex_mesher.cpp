@@ -1,9 +1,10 @@
-// Volume mesher of the surface pipeline (issue #6, step 1): CGAL Mesh_3 from the surface complex.
-// Nested spheres (a borderless inner piece that must get its own points) and three boxes (a
-// triple junction that must stay conforming) are meshed; every mesh is conforming, keeps the
-// interfaces of the surface and no others, and each tissue's volume is the one its surface
-// encloses up to the boundary approximation. Also the manifold pieces the domain is built from,
-// a short junction loop of the extraction, and the paper's Tables 2 and 3 in the surface report.
+// Volume mesher of the surface pipeline (docs/surface-pipeline.md, "Tetrahedra from the
+// surface"): CGAL Mesh_3 from the surface complex. Nested spheres (a borderless inner piece that
+// must get its own points) and three boxes (a triple junction that must stay conforming) are
+// meshed; every mesh is conforming, keeps the interfaces of the surface and no others, and each
+// tissue's volume is the one its surface encloses up to the boundary approximation. Also the
+// manifold pieces the domain is built from, a short junction loop of the extraction, and the
+// paper's Tables 2 and 3 in the surface report.
 #include "volume/complex_mesher.h"
 #include "quality/conformity.h"
 #include "core/face_key.h"

@@ -1,7 +1,8 @@
-// The radius-edge ratio a surface forces on a tet mesh keeping its triangles (issue #6; mesher/
-// forced_radius_edge.h): the closed form 1 / (2 sin theta_min) on hand-made triangles, found by
-// its smallest angle wherever that sits, and the invariant that TetGen's -Y mesh never gets below
-// it (on the test complexes and on a closed surface whose thin face forces more than -q2).
+// The radius-edge ratio a surface forces on a tet mesh keeping its triangles
+// (volume/forced_radius_edge.h): the closed form 1 / (2 sin theta_min) on hand-made triangles,
+// found by its smallest angle wherever that sits, and the invariant that TetGen's -Y mesh never
+// gets below it (on the test complexes and on a closed surface whose thin face forces more than
+// -q2).
 #include "core/errors.h"
 #include "volume/forced_radius_edge.h"
 #include "quality/mesh_quality.h"

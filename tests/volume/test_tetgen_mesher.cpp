@@ -1,7 +1,7 @@
-// TetGen backend (issue #6, step 2): the surface complexes of the surface-pipeline tests meshed
-// with TetGen: conforming, every tissue's volume equal to the volume its surface encloses (TetGen
-// only adds points on the input facets, never moves them), the interfaces of the surface and no
-// others, the quality bound, determinism, and parameter errors.
+// TetGen backend (docs/verification.md, "Cross-check with TetGen"): the surface complexes of the
+// surface-pipeline tests meshed with TetGen: conforming, every tissue's volume equal to the volume
+// its surface encloses (TetGen only adds points on the input facets, never moves them), the
+// interfaces of the surface and no others, the quality bound, determinism, and parameter errors.
 #include "core/errors.h"
 #include "quality/conformity.h"
 #include "surface/surface_checks.h"
