@@ -75,7 +75,7 @@ std::string mesh_summary_text(const TetMesh& mesh) {
 
 namespace {
 
-void add_sliver_repair_json(nlohmann::json& j, const SliverRepair& repair) {
+void add_sliver_repair_json(nlohmann::json& j, const SliverRepair& repair, const std::vector<std::string>& tissues) {
   const BoundarySliverRemoval& b = repair.boundary_slivers;
   const SliverFlipResult& f = repair.sliver_flips;
   j["boundary_slivers_removed"] = {{"tets", b.tets_removed}, {"volume_mm3", b.volume_removed_mm3}};
@@ -87,6 +87,14 @@ void add_sliver_repair_json(nlohmann::json& j, const SliverRepair& repair) {
   j["sliver_smoothing"] = {{"vertex_moves", repair.sliver_smoothing.moved_vertices},
                            {"vertex_moves_on_curved_surface", repair.sliver_smoothing.moved_on_surface},
                            {"passes", repair.sliver_smoothing.passes}};
+  const BoundaryPinchRepair& p = repair.boundary_pinches;
+  nlohmann::json per_tissue = nlohmann::json::object();
+  for (std::size_t t = 0; t < p.removed_per_tissue.size(); ++t)
+    if (p.removed_per_tissue[t] > 0)
+      per_tissue[t < tissues.size() ? tissues[t] : std::to_string(t + 1)] = {{"tets", p.removed_per_tissue[t]}, {"volume_mm3", p.volume_per_tissue_mm3[t]}};
+  j["boundary_pinches_opened"] = {{"edges", p.edges_found},        {"edges_left", p.edges_left},
+                                  {"tets_removed", p.tets_removed}, {"volume_mm3", p.volume_removed_mm3},
+                                  {"passes", p.passes},             {"per_tissue", per_tissue}};
 }
 
 std::string sliver_repair_text(const SliverRepair& repair) {
@@ -101,6 +109,11 @@ std::string sliver_repair_text(const SliverRepair& repair) {
     << " vertex moves (inside a tissue or within a flat or nearly flat boundary or interface";
   if (m.moved_on_surface > 0) s << "; " << m.moved_on_surface << " of them over a curved one, on the input surface";
   s << ") in " << m.passes << " passes\n";
+  const BoundaryPinchRepair& p = repair.boundary_pinches;
+  if (p.edges_found > 0)
+    s << "boundary pinches opened: " << p.edges_found << " edges where the outer boundary touched itself, "
+      << p.tets_removed << " tets removed, " << fmt("%.4f mm^3", p.volume_removed_mm3) << " in " << p.passes
+      << " passes" << (p.edges_left > 0 ? ", " + std::to_string(p.edges_left) + " left" : std::string()) << "\n";
   return s.str();
 }
 
@@ -132,7 +145,7 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
   j["image_components"] = r.meshing.image_components;
   j["initial_surface_points"] = r.meshing.initial_points;
   j["components_not_meshed"] = missed;
-  add_sliver_repair_json(j, r.meshing.repair);
+  add_sliver_repair_json(j, r.meshing.repair, r.meshing.mesh.tissue_names);
   return j;
 }
 
@@ -325,7 +338,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
     vj["quality"] = to_json(v.quality);
     vj["conformity"] = to_json(v.conformity);
     vj["conforming"] = v.conformity.conforming();
-    add_sliver_repair_json(vj, v.meshing.repair);
+    add_sliver_repair_json(vj, v.meshing.repair, v.meshing.mesh.tissue_names);
     vj["warnings"] = v.meshing.warnings;
     vj["volume_outside_tolerance"] = deviations_json(v.volume_deviations);
     j["volume_mesh"] = vj;

@@ -17,6 +17,7 @@ void Mesh3Optimisation::read(YamlMap& m) {
   interface_flips = m.boolean("interface_flips", interface_flips);
   smooth_slivers_below_deg = m.in_range("smooth_slivers_below_deg", smooth_slivers_below_deg, 0.0, 60.0);
   smooth_near_planar_deg = m.in_range("smooth_near_planar_deg", smooth_near_planar_deg, 0.0, 30.0);
+  open_boundary_pinches = m.boolean("open_boundary_pinches", open_boundary_pinches);
 }
 
 void Mesh3Optimisation::emit(YAML::Emitter& out) const {
@@ -32,13 +33,14 @@ void Mesh3Optimisation::emit(YAML::Emitter& out) const {
   out << YAML::Key << "interface_flips" << YAML::Value << interface_flips;
   out << YAML::Key << "smooth_slivers_below_deg" << YAML::Value << smooth_slivers_below_deg;
   out << YAML::Key << "smooth_near_planar_deg" << YAML::Value << smooth_near_planar_deg;
+  out << YAML::Key << "open_boundary_pinches" << YAML::Value << open_boundary_pinches;
 }
 
 SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings,
                             const SurfaceProjector& onto_surface) {
   SliverRepair r;
   const bool wanted = options.remove_boundary_slivers_deg > 0 || options.flip_slivers_below_deg > 0 ||
-                      options.smooth_slivers_below_deg > 0;
+                      options.smooth_slivers_below_deg > 0 || options.open_boundary_pinches;
   if (wanted && mesh.points.size() >= kMaxFaceKeyNodes) {
     warnings.push_back("sliver repair skipped: the mesh has more than 2,097,151 nodes");
     return r;
@@ -50,6 +52,8 @@ SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std
   if (options.smooth_slivers_below_deg > 0)
     r.sliver_smoothing = smooth_slivers(mesh, options.smooth_slivers_below_deg, options.smooth_near_planar_deg,
                                         onto_surface);
+  // Last, so that no later step changes the outer boundary it leaves manifold.
+  if (options.open_boundary_pinches) r.boundary_pinches = tissuemesh::open_boundary_pinches(mesh);
   return r;
 }
 

@@ -6,6 +6,7 @@
 
 #include "core/tet_mesh.h"
 #include "core/yaml_map.h"
+#include "volume/boundary_pinches.h"
 #include "volume/boundary_slivers.h"
 #include "volume/sliver_flips.h"
 #include "volume/sliver_smoothing.h"
@@ -45,6 +46,10 @@ struct Mesh3Optimisation {
   /// surface moves off its place by at most sin(2 x this angle) times the move (sliver_smoothing.h).
   /// 0 = off (exactly flat patches only).
   double smooth_near_planar_deg = 0.0;
+  /// Where the outer boundary touches itself along an edge (non-manifold), remove the tets of the
+  /// smaller side around that edge (boundary_pinches.h). Off leaves such a mesh to fail the
+  /// conformity check.
+  bool open_boundary_pinches = true;
 
   /// Reads these keys from the open section map `m` (range-checked, the key named in errors);
   /// keys absent keep the defaults above.
@@ -58,11 +63,12 @@ struct SliverRepair {
   BoundarySliverRemoval boundary_slivers;  ///< flat caps removed from the outer boundary
   SliverFlipResult sliver_flips;           ///< flips applied inside tissues
   SliverSmoothingResult sliver_smoothing;  ///< vertices moved (free, in-plane, on the surface)
+  BoundaryPinchRepair boundary_pinches;    ///< tets removed where the outer boundary pinches at an edge
 };
 
 /// The repairs `options` asks for (remove_boundary_slivers_deg, flip_slivers_below_deg,
-/// smooth_slivers_below_deg; in that order), on a
-/// mesh just extracted from CGAL; a mesh too large for them is left as it is, with a warning.
+/// smooth_slivers_below_deg, open_boundary_pinches; in that order), on a mesh just extracted from
+/// CGAL; a mesh too large for them is left as it is, with a warning.
 /// `onto_surface` (optional): the surface the mesh's boundary and interfaces approximate, for the
 /// smoothing of vertices on curved ones (sliver_smoothing.h).
 SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std::vector<std::string>& warnings,
