@@ -85,6 +85,7 @@ TriSurface RemeshComplex::result(const TriSurface& in) const {
     by_curve[kv.second].push_back(edge_of_key(kv.first));
   for (std::size_t c = 0; c < by_curve.size(); ++c) {
     auto& es = by_curve[c];
+    if (es.empty()) throw MeshingError("surface remeshing lost junction polyline " + std::to_string(c));
     std::sort(es.begin(), es.end());
     std::unordered_map<int, std::vector<int>> adj;
     for (const auto& e : es) {
@@ -108,7 +109,10 @@ TriSurface RemeshComplex::result(const TriSurface& in) const {
     }
     if (line.size() != es.size() + 1)
       throw MeshingError("surface remeshing broke junction polyline " + std::to_string(c));
-    for (int& v : line) v = index[v];
+    for (int& v : line) {
+      if (index[v] < 0) throw MeshingError("surface remeshing left a removed vertex on junction polyline " + std::to_string(c));
+      v = index[v];
+    }
     out.junctions.push_back(std::move(line));
   }
   return out;

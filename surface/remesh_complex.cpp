@@ -130,6 +130,35 @@ std::size_t RemeshComplex::corners() const {
   return n;
 }
 
+RemeshComplex::VertexFloor RemeshComplex::vertex_floor() const {
+  VertexFloor f;
+  f.corners = corners();
+  f.loop_vertices = kMinLoopEdges;
+  for (std::size_t c = 0; c < curve_closed_.size(); ++c) f.closed_curves += curve_closed_[c] && curve_edges_[c] > 0;
+  // Pieces: vertices joined by live triangles; a piece whose vertices are all surface vertices is
+  // a closed surface without junctions.
+  std::vector<int> parent(x_.size());
+  for (std::size_t v = 0; v < x_.size(); ++v) parent[v] = static_cast<int>(v);
+  auto root = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (std::size_t t = 0; t < tri_.size(); ++t)
+    if (tri_alive_[t])
+      for (int i = 1; i < 3; ++i) parent[root(tri_[t][i])] = root(tri_[t][0]);
+  std::vector<char> has_junction(x_.size(), 0), seen(x_.size(), 0);
+  for (std::size_t v = 0; v < x_.size(); ++v)
+    if (vertex_alive_[v] && kind_[v] != Kind::Surface) has_junction[root(static_cast<int>(v))] = 1;
+  for (std::size_t v = 0; v < x_.size(); ++v) {
+    if (!vertex_alive_[v]) continue;
+    const int r = root(static_cast<int>(v));
+    if (seen[r]) continue;
+    seen[r] = 1;
+    f.closed_pieces += !has_junction[r];
+  }
+  return f;
+}
+
 double RemeshComplex::s(const Vector3d& p) const {
   const double s0 = size_ ? size_(p) : 1.0;
   return cap_.size() == 0 ? s0 : std::min(s0, cap_(p) / L);

@@ -68,6 +68,15 @@ class RemeshComplex {
   std::size_t vertices() const { return alive_vertices_; }
   /// Live vertices that never move or go (junction corners, pinches).
   std::size_t corners() const;
+  /// What no coarsening can remove: the corners, kMinLoopEdges vertices on every closed junction
+  /// curve, and 4 vertices (a tetrahedron) for every closed piece of surface with no junction on
+  /// it (an island inside one tissue). A budget below total() cannot be met.
+  struct VertexFloor {
+    std::size_t corners = 0, closed_curves = 0, closed_pieces = 0;
+    std::size_t loop_vertices = 0;  ///< per closed curve
+    std::size_t total() const { return corners + loop_vertices * closed_curves + 4 * closed_pieces; }
+  };
+  VertexFloor vertex_floor() const;
   /// Integral of 1 / s^2 over the surface (each triangle once), mm^2.
   double weighted_area() const;
 

@@ -41,6 +41,14 @@ constexpr int kRepairRounds = 2;
 /// l) is under L within (L - 1.5 l) / 0.4 < 2.5 L of that edge; one L more, so that the repaired
 /// region ends where the size field is unchanged. Everything farther stays as polished.
 constexpr double kRepairReach = 3.5;
+/// Vertex count after a round, as a multiple of the budget, above which L is rescaled at once
+/// (remesh_surface); above kStalledAbove times the budget the rounds count as stalled when the
+/// count is still above kStalledProgress times its value two rounds before.
+constexpr double kRescaleAbove = 1.5;
+constexpr double kStalledAbove = 1.25;
+constexpr double kStalledProgress = 0.9;
+/// Stalled that far above the budget (a multiple of it), the final budget pass cannot meet it.
+constexpr double kHopelessAbove = 2.0;
 
 }  // namespace
 
@@ -52,10 +60,21 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   RemeshComplex m(input, projection, options);
   const bool budget = options.target_vertices > 0;
   const std::size_t target = budget ? static_cast<std::size_t>(options.target_vertices) : 0;
+  // A budget this surface cannot meet is the user's to change: an InputError naming the key,
+  // with the count the surface can be brought to, raised as soon as it is known.
+  auto unreachable = [&](std::size_t can_keep, const std::string& why) {
+    return InputError("surface.target_vertices: " + std::to_string(target) + " vertices cannot be met on this surface; " +
+                      why + ". Raise the budget to at least " + std::to_string(can_keep) +
+                      ", or give more small islands to their surroundings (surface.min_island_voxels)");
+  };
   if (budget) {
-    if (m.corners() >= target)
-      throw MeshingError("vertex budget " + std::to_string(target) + " is not above the " +
-                         std::to_string(m.corners()) + " junction corners the surface must keep");
+    const RemeshComplex::VertexFloor floor = m.vertex_floor();
+    if (floor.total() >= target)
+      throw unreachable(floor.total() + 1, "it must keep " + std::to_string(floor.total()) + " vertices (" +
+                                               std::to_string(floor.corners) + " junction corners, " +
+                                               std::to_string(floor.loop_vertices) + " on each of " +
+                                               std::to_string(floor.closed_curves) + " closed junction curves, 4 on each of " +
+                                               std::to_string(floor.closed_pieces) + " closed islands)");
     m.L = std::sqrt(2.0 * m.weighted_area() / (std::sqrt(3.0) * static_cast<double>(target)));
   } else {
     m.L = options.target_edge_mm;
@@ -71,12 +90,40 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     c.relax();
   };
   const int rounds = std::max(1, options.iterations);
+  std::size_t fewest = m.vertices();
+  double last_round = static_cast<double>(m.vertices()), two_rounds_ago = last_round;
+  double L_two_rounds_ago = m.L, L_last_round = m.L;  // L the rounds that ended then ran with
   for (int it = 0; it < rounds; ++it) {
     round(m, it >= 1);
     stage.note("round " + std::to_string(it + 1) + "/" + std::to_string(rounds) + ": " + std::to_string(m.vertices()) +
                " vertices at edge length L " + format_double("%.3f", m.L) + " mm");
-    if (budget && (it == rounds / 3 || it == 2 * rounds / 3))
-      m.L *= std::sqrt(static_cast<double>(m.vertices()) / static_cast<double>(target));
+    if (!budget) continue;
+    // On the shipped budgets the first round ends within ~25 % of the budget and the schedule
+    // above rescales L twice. Farther off, L is rescaled after every round. When the count stays
+    // above the budget and falls by less than a tenth over two rounds although L grew, collapses
+    // are being refused across the surface (folds or sheets thinner than the edge length, where a
+    // coarser triangle would leave the surface or cut through it), and longer edges only make that
+    // worse: the rounds stop, and the final budget pass (which may collapse longer edges) takes over; when
+    // the count is more than twice the budget, that pass cannot close the gap either, and the run
+    // stops now rather than after minutes.
+    const double v = static_cast<double>(m.vertices()), goal = static_cast<double>(target);
+    fewest = std::min(fewest, m.vertices());
+    if (it >= 2 && v > kStalledAbove * goal && v > kStalledProgress * two_rounds_ago && m.L > L_two_rounds_ago) {
+      if (v > kHopelessAbove * goal)
+        throw unreachable(fewest, "after " + std::to_string(it + 1) + " remeshing rounds " +
+                                      std::to_string(m.vertices()) + " vertices remain, and no round went below " +
+                                      std::to_string(fewest) +
+                                      " (collapses are refused where a coarser triangle would leave the surface or cut "
+                                      "through it: folds or sheets thinner than the edge length " +
+                                      format_double("%.2f", m.L) + " mm)");
+      stage.note("the rounds no longer approach the budget: the final budget pass takes over");
+      break;
+    }
+    two_rounds_ago = last_round;
+    last_round = v;
+    L_two_rounds_ago = L_last_round;
+    L_last_round = m.L;
+    if (it == rounds / 3 || it == 2 * rounds / 3 || v > kRescaleAbove * goal) m.L *= std::sqrt(v / goal);
   }
   const double poor = kPoorAngleDeg * M_PI / 180.0;
   // Budget, then polish: flips and relaxation, angle-improving smoothing until nothing moves, and
@@ -85,8 +132,10 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   auto finish = [&](RemeshComplex& c) {
     auto meet_budget = [&] {
       if (budget && !c.match_count(target))
-        throw MeshingError("surface remeshing could not reach the vertex budget " + std::to_string(target) + " (at " +
-                           std::to_string(c.vertices()) + ")");
+        throw unreachable(c.vertices() > target ? c.vertices() : target,
+                          "the final budget pass stopped at " + std::to_string(c.vertices()) +
+                              " vertices (every remaining collapse or split was refused by the guards that keep "
+                              "the surface close to the input and free of intersections)");
     };
     meet_budget();
     for (int k = 0; k < 3; ++k) {
@@ -155,7 +204,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
         quality = q;
         smoothed += trial_moves;  // like splits, collapses and flips: every pass that shaped the result
       }
-    } catch (const MeshingError& e) {
+    } catch (const Error& e) {  // MeshingError, or InputError from its budget pass
       // The repair's own budget pass or junction bookkeeping failed: the polished result stands.
       stage.note("repair around " + std::to_string(capped) + " triangles under 30 deg failed (" + e.what() +
                  "): discarded");

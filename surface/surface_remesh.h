@@ -65,8 +65,12 @@ struct RemeshResult {
 };
 
 /// `input` must be valid and closed per tissue (surface/surface_checks.h), `projection` built on it.
-/// Throws InputError when options give neither a budget nor an edge length; MeshingError when the
-/// budget is below what the junction corners need or cannot be reached.
+/// Throws InputError when options give neither a budget nor an edge length, and InputError naming
+/// surface.target_vertices, with the smallest count it can offer, when the budget cannot be met:
+/// below what the corners, closed junction curves and closed islands need (before any work), the
+/// count still above twice the budget after the second round (folds or sheets thinner than the
+/// edge length refuse the collapses), or the final budget pass stopped short; MeshingError when
+/// the remeshed complex is broken (a junction curve lost).
 RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& projection, const RemeshOptions& options,
                             Progress& progress);
 

@@ -212,11 +212,30 @@ TEST(SurfaceRemesh, TwoThreadsGiveTheSameSurfaceAsOne) {
   EXPECT_TRUE(two.checks.valid());
 }
 
-TEST(SurfaceRemesh, RefusesABudgetBelowTheCorners) {
+TEST(SurfaceRemesh, RefusesABudgetItCannotMeetNamingTheKeyAndACount) {
+  // Budget 1: below the junction corners, refused before any work; budget 3: above them, but no
+  // remeshing keeps three boxes' surfaces closed with so few vertices.
   const LabelImage img = three_boxes();
   const TriSurface input = extract(img, 3).surface;
   const SurfaceProjection on_input(input);
-  EXPECT_THROW(remesh(input, on_input, 3, img.spacing.norm()), MeshingError);
+  auto message_of = [&](int budget) {
+    try {
+      remesh(input, on_input, budget, img.spacing.norm());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no InputError");
+  };
+  const std::string below = message_of(1);
+  EXPECT_EQ(below.rfind("surface.target_vertices: 1 vertices cannot be met on this surface; it must keep ", 0), 0u) << below;
+  EXPECT_NE(below.find("junction corners"), std::string::npos) << below;
+  const std::string stalled = message_of(3);
+  EXPECT_EQ(stalled.rfind("surface.target_vertices: 3 vertices cannot be met on this surface; ", 0), 0u) << stalled;
+  int at_least = 0;
+  const auto at = stalled.find("Raise the budget to at least ");
+  ASSERT_NE(at, std::string::npos) << stalled;
+  at_least = std::atoi(stalled.c_str() + at + 29);
+  EXPECT_GT(at_least, 3) << stalled;
   RemeshOptions none;
   Progress progress;
   EXPECT_THROW(remesh_surface(input, on_input, none, progress), InputError);
