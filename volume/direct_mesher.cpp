@@ -307,6 +307,15 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
     result.initial_points = seed_components(c3t3, domain, ids, comps, params.facet_size_mm);
     stage.note(std::to_string(result.initial_points) + " initial surface points");
   }
+  // Thin tissue and small components need a boundary tolerance below the voxel size; a coarser
+  // one loses their volume (named per tissue by the volume checks, but the cause is here).
+  if (params.facet_distance_mm > ids.spacing.minCoeff()) {
+    std::ostringstream w;
+    w << "direct.facet_distance_mm (" << params.facet_distance_mm << " mm) is larger than the smallest voxel spacing ("
+      << ids.spacing.minCoeff() << " mm): thin tissue and small components lose volume; about half a voxel "
+      << "resolves them";
+    result.warnings.push_back(w.str());
+  }
   mesh3::refine(c3t3, domain, criteria, progress);
   mesh3::optimise(c3t3, domain, params.optimise, progress, result.warnings);
 

@@ -148,3 +148,12 @@ TEST(DirectIslands, ThresholdZeroKeepsEveryComponent) {
   }
   EXPECT_TRUE(check_conformity(r.mesh).conforming());
 }
+
+TEST(DirectIslands, ABoundaryToleranceAboveTheVoxelSizeIsAWarning) {
+  LabelImage img = fragmented(0);
+  img.spacing = {0.1, 0.1, 0.1};  // facet distance 0.3 mm is three voxels
+  Progress progress;
+  const DirectMeshResult r = mesh_labels_direct(img, {"fat", "fgt"}, coarse(0), progress);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings[0].find("direct.facet_distance_mm"), std::string::npos) << r.warnings[0];
+}
