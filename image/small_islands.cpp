@@ -7,6 +7,7 @@
 
 #include "image/label_components.h"
 
+#include <algorithm>
 #include <map>
 #include <stdexcept>
 #include <unordered_set>
@@ -98,10 +99,62 @@ std::size_t absorb_once(LabelImage& ids, std::size_t min_voxels, std::vector<std
   return absorbed;
 }
 
+// Per tissue, from the net change between `before` and `ids`. A component of `before` with a
+// changed voxel was an island: a component with min_voxels voxels or more keeps all of them (every
+// component that contains it later is at least as large), so each flood fill below stays inside
+// one island. An island that went and came back whole (a pocket of tissue A in a small shell of
+// B in A) changed nothing and is not counted.
+std::vector<TissueIslands> count_by_tissue(const std::vector<std::int32_t>& before, const LabelImage& ids) {
+  std::map<int, TissueIslands> per;
+  std::unordered_set<std::size_t> visited;
+  std::vector<std::size_t> stack, next;
+  const double voxel_mm3 = ids.voxel_volume();
+  for (std::size_t v = 0; v < before.size(); ++v) {
+    if (before[v] == ids.labels[v]) continue;
+    TissueIslands& t = per[before[v]];
+    t.tissue_id = before[v];
+    ++t.voxels;
+    t.volume_mm3 += voxel_mm3;
+    ++t.voxels_into[ids.labels[v]];
+    if (!visited.insert(v).second) continue;
+    ++t.islands;
+    stack.assign(1, v);
+    while (!stack.empty()) {
+      const std::size_t u = stack.back();
+      stack.pop_back();
+      next.clear();
+      face_neighbours(ids, u, next);
+      for (const std::size_t w : next)
+        if (before[w] == before[v] && visited.insert(w).second) stack.push_back(w);
+    }
+  }
+  std::vector<TissueIslands> out;
+  for (auto& [id, t] : per) out.push_back(std::move(t));
+  return out;
+}
+
 }  // namespace
+
+void IslandAbsorption::add(const IslandAbsorption& later) {
+  islands += later.islands;
+  voxels += later.voxels;
+  volume_mm3 += later.volume_mm3;
+  complete = later.complete;
+  min_voxels = later.min_voxels;
+  for (const TissueIslands& l : later.tissues) {
+    auto it = std::lower_bound(tissues.begin(), tissues.end(), l.tissue_id,
+                               [](const TissueIslands& t, int id) { return t.tissue_id < id; });
+    if (it == tissues.end() || it->tissue_id != l.tissue_id) it = tissues.insert(it, TissueIslands{l.tissue_id, 0, 0, 0.0, {}});
+    it->islands += l.islands;
+    it->voxels += l.voxels;
+    it->volume_mm3 += l.volume_mm3;
+    for (const auto& [id, n] : l.voxels_into) it->voxels_into[id] += n;
+  }
+}
 
 IslandAbsorption absorb_small_islands(LabelImage& ids, std::size_t min_voxels, const std::vector<std::size_t>* changed_since) {
   IslandAbsorption out;
+  out.min_voxels = min_voxels;
   if (min_voxels <= 1) return out;
   const std::vector<std::int32_t> before = ids.labels;
   // A component that has no changed voxel and no changed face neighbour is one the caller's last
@@ -127,11 +180,14 @@ IslandAbsorption absorb_small_islands(LabelImage& ids, std::size_t min_voxels, c
       break;
     }
     seeds.clear();
-    const std::size_t n = absorb_once(ids, min_voxels, seeds);
-    out.islands += n;
-    out.complete = n == 0;
+    out.complete = absorb_once(ids, min_voxels, seeds) == 0;
   }
-  for (std::size_t v = 0; v < before.size(); ++v) out.voxels += before[v] != ids.labels[v];
+  out.tissues = count_by_tissue(before, ids);
+  for (const TissueIslands& t : out.tissues) {
+    out.islands += t.islands;
+    out.voxels += t.voxels;
+    out.volume_mm3 += t.volume_mm3;
+  }
   return out;
 }
 

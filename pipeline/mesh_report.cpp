@@ -4,6 +4,7 @@
 #include "quality/mesh_quality.h"
 
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -117,6 +118,49 @@ std::string sliver_repair_text(const SliverRepair& repair) {
   return s.str();
 }
 
+std::string tissue_name(int id, const std::vector<std::string>& names) {
+  if (id == 0) return "outside";
+  return id > 0 && static_cast<std::size_t>(id) <= names.size() ? names[id - 1] : "tissue " + std::to_string(id);
+}
+
+// Both pipelines report absorbed islands alike: per tissue, the components that went, their voxels
+// and volume, and which tissue (or outside) took the voxels.
+nlohmann::json islands_json(const IslandAbsorption& a, const std::vector<std::string>& names) {
+  nlohmann::json tissues = nlohmann::json::array();
+  for (const TissueIslands& t : a.tissues) {
+    nlohmann::json into = nlohmann::json::array();
+    for (const auto& [id, n] : t.voxels_into)
+      into.push_back({{"tissue", tissue_name(id, names)}, {"voxels", n},
+                      {"volume_mm3", t.voxels > 0 ? t.volume_mm3 * static_cast<double>(n) / static_cast<double>(t.voxels) : 0.0}});
+    tissues.push_back({{"tissue", tissue_name(t.tissue_id, names)}, {"components", t.islands}, {"voxels", t.voxels},
+                       {"volume_mm3", t.volume_mm3}, {"into", into}});
+  }
+  return {{"below_voxels", a.min_voxels}, {"components", a.islands}, {"voxels", a.voxels},
+          {"volume_mm3", a.volume_mm3}, {"complete", a.complete}, {"tissues", tissues}};
+}
+
+std::string islands_text(const IslandAbsorption& a, const std::vector<std::string>& names) {
+  std::ostringstream s;
+  s << "components under " << a.min_voxels << " voxels given to their surroundings: " << a.islands << " ("
+    << a.voxels << " voxels, " << fmt("%.2f mm^3)\n", a.volume_mm3);
+  if (!a.complete) s << "  (pass limit reached: some nested islands are left)\n";
+  for (const TissueIslands& t : a.tissues) {
+    char name[64];
+    std::snprintf(name, sizeof name, "  %-16s", tissue_name(t.tissue_id, names).c_str());
+    s << name << fmt(" %8.0f components %10.0f voxels", static_cast<double>(t.islands), static_cast<double>(t.voxels))
+      << fmt(" %12.2f mm^3  ->", t.volume_mm3);
+    for (const auto& [id, n] : t.voxels_into) s << " " << tissue_name(id, names) << " " << n;
+    s << " voxels\n";
+  }
+  return s.str();
+}
+
+void add_missed_text(std::ostringstream& s, const std::vector<MissedComponent>& missed) {
+  for (const auto& m : missed)
+    s << "  " << m.tissue << ": " << m.voxels << " voxels, " << fmt("%.2f mm^3 at (%.1f, ", m.volume_mm3, m.centroid_mm[0])
+      << fmt("%.1f, %.1f) mm LPS\n", m.centroid_mm[1], m.centroid_mm[2]);
+}
+
 nlohmann::json deviations_json(const std::vector<VolumeDeviation>& deviations) {
   nlohmann::json out = nlohmann::json::array();
   for (const VolumeDeviation& d : deviations)
@@ -143,8 +187,20 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
   j["warnings"] = r.meshing.warnings;
   j["volume_outside_tolerance"] = deviations_json(r.volume_deviations);
   j["image_components"] = r.meshing.image_components;
+  j["components_absorbed"] = islands_json(r.meshing.absorbed, mesh.tissue_names);
+  j["components_meshed"] = r.meshing.meshed_components;
   j["initial_surface_points"] = r.meshing.initial_points;
   j["components_not_meshed"] = missed;
+  std::map<std::string, std::pair<std::size_t, double>> missed_by_tissue;  // components, volume
+  for (const auto& m : r.meshing.missed) {
+    auto& [n, volume] = missed_by_tissue[m.tissue];
+    ++n;
+    volume += m.volume_mm3;
+  }
+  nlohmann::json by_tissue = nlohmann::json::array();
+  for (const auto& [tissue, nv] : missed_by_tissue)
+    by_tissue.push_back({{"tissue", tissue}, {"components", nv.first}, {"volume_mm3", nv.second}});
+  j["components_not_meshed_by_tissue"] = by_tissue;
   add_sliver_repair_json(j, r.meshing.repair, r.meshing.mesh.tissue_names);
   return j;
 }
@@ -155,13 +211,13 @@ std::string mesh_job_text(const MeshJobResult& r) {
   s << "mesh: " << mesh.points.size() << " nodes, " << mesh.tets.size() << " tets\n\n";
   s << format_quality_table(r.quality) << "\n";
   s << format_conformity_table(r.conformity, mesh.tissue_names) << "\n";
-  s << "image components (6-connected, all tissues): " << r.meshing.image_components << "; not meshed: "
-    << r.meshing.missed.size() << "\n";
+  s << "image components (6-connected, all tissues): " << r.meshing.image_components << "\n";
+  if (r.meshing.absorbed.min_voxels > 1) s << islands_text(r.meshing.absorbed, mesh.tissue_names);
+  s << "components meshed: " << r.meshing.meshed_components << " from " << r.meshing.initial_points
+    << " initial surface points; not meshed: " << r.meshing.missed.size() << "\n";
+  add_missed_text(s, r.meshing.missed);
   s << sliver_repair_text(r.meshing.repair);
   for (const auto& w : r.meshing.warnings) s << "WARNING: " << w << "\n";
-  for (const auto& m : r.meshing.missed)
-    s << "  " << m.tissue << ": " << m.voxels << " voxels, " << fmt("%.2f mm^3 at (%.1f, ", m.volume_mm3, m.centroid_mm[0])
-      << fmt("%.1f, %.1f) mm LPS\n", m.centroid_mm[1], m.centroid_mm[2]);
   return s.str();
 }
 
@@ -274,8 +330,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                     {"junction_curve_vertices", r.extraction.curve_vertices},
                     {"junction_corner_vertices", r.extraction.corner_vertices},
                     {"unfolded_vertex_moves", r.extraction.unfolded_vertices},
-                    {"islands_absorbed",
-                     {{"islands", r.extraction.islands.islands}, {"voxels", r.extraction.islands.voxels}}},
+                    {"islands_absorbed", islands_json(r.extraction.islands, e.tissue_names)},
                     {"voxel_repair",
                      {{"relabelled_voxels", r.extraction.repair.relabelled_voxels},
                       {"passes", r.extraction.repair.passes}}},
@@ -359,6 +414,7 @@ std::string surface_job_text(const SurfaceJobResult& r) {
     << " voxels) given to their surroundings, " << r.extraction.repair.relabelled_voxels
     << " voxels relabelled to remove non-manifold configurations, "
     << r.extraction.unfolded_vertices << " vertex moves to undo folds\n";
+  if (r.extraction.islands.min_voxels > 1) o << islands_text(r.extraction.islands, e.tissue_names);
   if (r.remesh) {
     o << "remeshed surface: " << s.points.size() << " vertices, " << s.triangles.size() << " triangles, "
       << s.junctions.size() << " junction polylines; edge length " << fmt("%.3f", r.remesh->edge_length_mm)

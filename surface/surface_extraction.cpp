@@ -215,8 +215,7 @@ SurfaceExtraction extract_surface(const LabelImage& ids, const std::vector<std::
       const IslandAbsorption islands =
           absorb_small_islands(work, min_voxels, no_islands_before_repair ? &repaired : nullptr);
       no_islands_before_repair = islands.complete;
-      out.islands.islands += islands.islands;
-      out.islands.voxels += islands.voxels;
+      out.islands.add(islands);
       if (round > 0 && islands.islands == 0) break;
       const std::vector<std::int32_t> before = work.labels;
       const LabelRepairResult repair = make_well_composed(work);

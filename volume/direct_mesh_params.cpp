@@ -2,6 +2,10 @@
 
 #include "core/errors.h"
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+
 namespace tissuemesh {
 
 DirectMeshParams DirectMeshParams::from_yaml(YamlMap& m) {
@@ -21,9 +25,21 @@ DirectMeshParams DirectMeshParams::from_yaml(YamlMap& m) {
   p.refine_radius_mm = m.positive("refine_radius_mm", p.refine_radius_mm);
   p.smooth_boundaries = m.boolean("smooth_boundaries", p.smooth_boundaries);
   p.smoothing_sigma_mm = m.in_range("smoothing_sigma_mm", p.smoothing_sigma_mm, 0.0, 100.0);
+  p.min_component_voxels = m.integer("min_component_voxels", p.min_component_voxels);
+  if (p.min_component_voxels < 0 || p.min_component_voxels > 1000000)
+    throw InputError(m.where("min_component_voxels") + ": must be in 0..1000000 voxels (0 = off), got " +
+                     std::to_string(p.min_component_voxels));
+  p.min_component_mm3 = m.in_range("min_component_mm3", p.min_component_mm3, 0.0, 1e6);
   p.optimise.read(m);
   m.finish();
   return p;
+}
+
+std::size_t DirectMeshParams::absorb_below_voxels(double voxel_mm3) const {
+  // n voxels have less than min_component_mm3 exactly when n < min_component_mm3 / voxel_mm3; the
+  // relative slack keeps a volume that is a whole number of voxels from rounding up past it.
+  const double by_volume = voxel_mm3 > 0 ? std::ceil(min_component_mm3 / voxel_mm3 * (1 - 1e-9)) : 0.0;
+  return std::max(static_cast<std::size_t>(min_component_voxels), static_cast<std::size_t>(by_volume));
 }
 
 void DirectMeshParams::to_yaml(YAML::Emitter& out) const {
@@ -41,6 +57,8 @@ void DirectMeshParams::to_yaml(YAML::Emitter& out) const {
   out << YAML::Key << "refine_radius_mm" << YAML::Value << refine_radius_mm;
   out << YAML::Key << "smooth_boundaries" << YAML::Value << smooth_boundaries;
   out << YAML::Key << "smoothing_sigma_mm" << YAML::Value << smoothing_sigma_mm;
+  out << YAML::Key << "min_component_voxels" << YAML::Value << min_component_voxels;
+  out << YAML::Key << "min_component_mm3" << YAML::Value << min_component_mm3;
   optimise.emit(out);
   out << YAML::EndMap;
 }

@@ -3,7 +3,10 @@
 // Why: CGAL interpolates labels between voxel centres, so a tissue that touches the image border
 // ends at the border voxels' centres, in sharp creases and triple lines that need protecting (see
 // the border features below). CGAL's random initialisation misses small parts, so every image
-// component is seeded explicitly (seed_components).
+// component is seeded explicitly (seed_components). Seeding every component of a fragmented map
+// is what made it slow: thousands of islands of a few voxels, each with dozens of seeds, each
+// refined to the criteria. So components too small to be meshed faithfully are absorbed first,
+// and the seeds per component follow its volume.
 #include "volume/direct_mesher.h"
 
 #include "core/errors.h"
@@ -25,6 +28,7 @@
 #include <CGAL/version.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -112,24 +116,40 @@ bool inside_protecting_ball(const Tr& tr, const Point& p) {
   return wp.weight() > 0 && CGAL::squared_distance(p, wp.point()) <= wp.weight();
 }
 
+// Start voxels per component: one per cube of side facet_size_mm in its volume, at least one and
+// at most kMaxStarts. One start finds a component; refinement then grows its surface from the
+// points found. More starts on a large component spread its first surface points (CGAL's own
+// initialisation shoots ~20 rays), but a small one seeded from many voxels gets dozens of points
+// closer together than the facet size, all of which refinement must then grade away from.
+constexpr std::size_t kMaxStarts = 9;
+
+std::size_t start_count(const LabelComponent& c, double voxel_mm3, double facet_size_mm) {
+  const double cubes = static_cast<double>(c.voxels) * voxel_mm3 / (facet_size_mm * facet_size_mm * facet_size_mm);
+  return std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(cubes)), 1, kMaxStarts);
+}
+
 // Seeds surface points on every component (see header): from a voxel of the component walk along
 // each axis to the first voxel of another id; the segment between the two voxel centres crosses
 // the boundary, which CGAL's intersection oracle locates.
 std::size_t seed_components(C3t3& c3t3, const Domain& domain, const LabelImage& ids,
-                            const ComponentMap& comps, const Eigen::Vector3d& spacing) {
+                            const ComponentMap& comps, double facet_size_mm) {
   Tr& tr = c3t3.triangulation();
   auto construct_intersection = domain.construct_intersection_object();
-  // Extra start voxels for large components: CGAL's own initialisation shoots ~20 rays.
+  const Eigen::Vector3d& spacing = ids.spacing;
+  // The component's first boundary voxel, then every stride-th voxel in scan order.
   std::vector<std::vector<std::array<int, 3>>> starts(comps.components.size());
-  std::vector<std::size_t> seen(comps.components.size(), 0);
-  for (std::size_t c = 0; c < comps.components.size(); ++c) starts[c].push_back(comps.components[c].seed);
+  std::vector<std::size_t> seen(comps.components.size(), 0), wanted(comps.components.size(), 1);
+  for (std::size_t c = 0; c < comps.components.size(); ++c) {
+    starts[c].push_back(comps.components[c].seed);
+    wanted[c] = start_count(comps.components[c], ids.voxel_volume(), facet_size_mm);
+  }
   for (int k = 0; k < ids.dims[2]; ++k)
     for (int j = 0; j < ids.dims[1]; ++j)
       for (int i = 0; i < ids.dims[0]; ++i) {
         const std::int32_t c = comps.component_of_voxel[ids.index(i, j, k)];
-        if (c < 0) continue;
-        const std::size_t stride = std::max<std::size_t>(1, comps.components[c].voxels / 8);
-        if (++seen[c] % stride == 0 && starts[c].size() < 9) starts[c].push_back({i, j, k});
+        if (c < 0 || wanted[c] < 2) continue;
+        const std::size_t stride = std::max<std::size_t>(1, comps.components[c].voxels / (wanted[c] - 1));
+        if (++seen[c] % stride == 0 && starts[c].size() < wanted[c]) starts[c].push_back({i, j, k});
       }
   const int steps[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   std::size_t inserted = 0;
@@ -175,7 +195,7 @@ std::size_t seed_components(C3t3& c3t3, const Domain& domain, const LabelImage& 
 
 std::string cgal_version() { return CGAL_STR(CGAL_VERSION); }
 
-DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std::string>& names,
+DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<std::string>& names,
                                     const DirectMeshParams& params, Progress& progress) {
   if (names.size() > 255) throw InputError("at most 255 tissues can be meshed");
   auto tissue_id = [&](const std::string& name, const std::string& key) {
@@ -185,20 +205,34 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
   };
 
   DirectMeshResult result;
+  // The image meshed: the input, or a copy without the components below the threshold.
+  LabelImage absorbed;
+  const std::size_t below_voxels = params.absorb_below_voxels(input.voxel_volume());
+  const bool absorb = below_voxels > 1;
+  const LabelImage& ids = absorb ? absorbed : input;
   ComponentMap comps;
   std::vector<std::uint8_t> bytes;
   std::vector<std::uint8_t> weights;
   {
     auto stage = progress.stage("prepare image");
-    comps = find_components(ids);
+    comps = find_components(input);
     result.image_components = comps.components.size();
+    if (absorb) {
+      absorbed = input;
+      result.absorbed = absorb_small_islands(absorbed, below_voxels);
+      if (result.absorbed.voxels > 0) comps = find_components(absorbed);
+    }
+    result.meshed_components = comps.components.size();
     bytes = id_bytes(ids);
     if (params.smooth_boundaries) {
       const double sigma = params.smoothing_sigma_mm > 0 ? params.smoothing_sigma_mm : 0.5 * ids.spacing.maxCoeff();
       weights = label_weights(ids, sigma);
     }
     std::ostringstream note;
-    note << comps.components.size() << " tissue components in " << ids.voxel_count() << " voxels";
+    note << result.image_components << " tissue components in " << ids.voxel_count() << " voxels";
+    if (absorb)
+      note << "; " << result.absorbed.islands << " under " << below_voxels << " voxels ("
+           << result.absorbed.voxels << " voxels) joined their surroundings, " << comps.components.size() << " left";
     stage.note(note.str());
   }
 
@@ -270,8 +304,17 @@ DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std
   }
   {
     auto stage = progress.stage("seed components");
-    result.initial_points = seed_components(c3t3, domain, ids, comps, ids.spacing);
+    result.initial_points = seed_components(c3t3, domain, ids, comps, params.facet_size_mm);
     stage.note(std::to_string(result.initial_points) + " initial surface points");
+  }
+  // Thin tissue and small components need a boundary tolerance below the voxel size; a coarser
+  // one loses their volume (named per tissue by the volume checks, but the cause is here).
+  if (params.facet_distance_mm > ids.spacing.minCoeff()) {
+    std::ostringstream w;
+    w << "direct.facet_distance_mm (" << params.facet_distance_mm << " mm) is larger than the smallest voxel spacing ("
+      << ids.spacing.minCoeff() << " mm): thin tissue and small components lose volume; about half a voxel "
+      << "resolves them";
+    result.warnings.push_back(w.str());
   }
   mesh3::refine(c3t3, domain, criteria, progress);
   mesh3::optimise(c3t3, domain, params.optimise, progress, result.warnings);

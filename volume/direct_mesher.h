@@ -1,10 +1,13 @@
 // Direct pipeline: CGAL Mesh_3 from a tissue-id image to one conforming multi-material TetMesh
 // (CGAL 3D Mesh Generation manual, labelled image domains; docs/direct-pipeline.md).
 //
-// Method: tissues that touch the image border end at the centres of the border voxels, where
-// polylines are protected as features; boundaries are smoothed by weighted labels
-// (label_weights.h); every 6-connected component of every tissue gets initial surface points, so
-// that no island is skipped; Delaunay refinement with the criteria of DirectMeshParams and a size
+// Method: tissue components below the size threshold of DirectMeshParams join the region around
+// them (image/small_islands.h); tissues that touch the image border end at the centres of the
+// border voxels, where polylines are protected as features; boundaries are smoothed by weighted
+// labels (label_weights.h); every remaining 6-connected component of every tissue gets initial
+// surface points, so that no island is skipped (one start voxel per facet_size_mm cube of its
+// volume, at least one and at most nine, six axis rays from each: at most 54 points per component
+// and 6 per small one); Delaunay refinement with the criteria of DirectMeshParams and a size
 // field that is finer around `refine_tissue`; then optional Lloyd/ODT, sliver
 // perturbation/exudation and the sliver repairs of Mesh3Optimisation. All tets of the result are
 // positively oriented in physical LPS millimetres, even when the image direction matrix is a
@@ -14,6 +17,7 @@
 #include "core/label_image.h"
 #include "core/progress.h"
 #include "core/tet_mesh.h"
+#include "image/small_islands.h"
 #include "volume/direct_mesh_params.h"
 #include "volume/mesh3_optimisation.h"
 
@@ -34,9 +38,12 @@ struct MissedComponent {
 
 struct DirectMeshResult {
   TetMesh mesh;
-  std::size_t image_components = 0;      ///< 6-connected components over all tissues
+  std::size_t image_components = 0;      ///< 6-connected components over all tissues of the input
+  /// Components under DirectMeshParams::absorb_below_voxels, given to their surroundings.
+  IslandAbsorption absorbed;
+  std::size_t meshed_components = 0;     ///< components left to mesh, each seeded and checked
   std::size_t initial_points = 0;        ///< surface points seeded before refinement
-  std::vector<MissedComponent> missed;   ///< components not represented (reported, never hidden)
+  std::vector<MissedComponent> missed;   ///< kept components not represented (reported, never hidden)
   SliverRepair repair;                   ///< what the sliver repairs did
   /// Things the user must know, e.g. an optimiser stopped by its time limit (its result then
   /// depends on machine speed, so repeated runs may differ).

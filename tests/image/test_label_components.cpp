@@ -94,6 +94,45 @@ TEST(SmallIslands, IslandsUnderTheThresholdTakeTheirSurroundingsLargerOnesStay) 
   EXPECT_EQ(absorb_small_islands(img, 30).islands, 0u);
 }
 
+TEST(SmallIslands, WhatWentIsCountedPerTissueAgainstTheInput) {
+  // As above, at 0.5 mm: tissue 1 loses two components (the lone voxel and the one inside the
+  // tissue-3 shell), tissue 3 its shell; all of it ends as tissue 2.
+  LabelImage img = block_of(2, 14);
+  img.spacing = {0.5, 0.5, 0.5};
+  fill(img, 1, 2, 3, 2, 3, 2, 3);
+  fill(img, 1, 7, 11, 7, 11, 7, 11);
+  fill(img, 3, 2, 5, 8, 11, 2, 5);
+  fill(img, 1, 3, 4, 9, 10, 3, 4);
+  const IslandAbsorption r = absorb_small_islands(img, 30);
+  EXPECT_EQ(r.min_voxels, 30u);
+  EXPECT_EQ(r.islands, 3u);
+  EXPECT_EQ(r.voxels, 28u);
+  EXPECT_DOUBLE_EQ(r.volume_mm3, 28 * 0.125);
+  ASSERT_EQ(r.tissues.size(), 2u);
+  EXPECT_EQ(r.tissues[0].tissue_id, 1);
+  EXPECT_EQ(r.tissues[0].islands, 2u);
+  EXPECT_EQ(r.tissues[0].voxels, 2u);
+  EXPECT_EQ(r.tissues[0].voxels_into, (std::map<int, std::size_t>{{2, 2}}));
+  EXPECT_EQ(r.tissues[1].tissue_id, 3);
+  EXPECT_EQ(r.tissues[1].islands, 1u);
+  EXPECT_EQ(r.tissues[1].voxels, 26u);
+  EXPECT_DOUBLE_EQ(r.tissues[1].volume_mm3, 26 * 0.125);
+
+  // Adding a later absorption sums tissue by tissue and keeps the order by id.
+  IslandAbsorption later;
+  later.min_voxels = 30;
+  later.islands = later.voxels = 1;
+  later.tissues.push_back(TissueIslands{2, 1, 1, 0.125, {{0, 1}}});
+  IslandAbsorption sum = r;
+  sum.add(later);
+  EXPECT_EQ(sum.islands, 4u);
+  EXPECT_EQ(sum.voxels, 29u);
+  ASSERT_EQ(sum.tissues.size(), 3u);
+  EXPECT_EQ(sum.tissues[1].tissue_id, 2);
+  EXPECT_EQ(sum.tissues[1].voxels_into.at(0), 1u);
+  EXPECT_EQ(sum.tissues[2].tissue_id, 3);
+}
+
 TEST(SmallIslands, TheMajorityOfFaceNeighboursWinsAndTheBorderCountsAsOutside) {
   // A one-voxel island of tissue 3 on the plane between tissue 1 (below, k < 5) and tissue 2
   // (k >= 5), sitting in tissue 2: five of its six neighbours are 2, one is 1.

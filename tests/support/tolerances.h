@@ -28,6 +28,11 @@ constexpr double kAtan2Rad = 1e-15;
 /// phantom (3%) is tighter because its tissues are many voxels across.
 constexpr double kSmallImageVolumeRel = 0.05;
 
+/// Mesh volume of a 4 x 4 x 4-voxel block against its voxel volume at the coarse test sizes
+/// (facet distance 0.3 of a voxel, smoothed labels): its edges and corners are rounded off, a
+/// large share of so small a block; 25 % still tells a meshed block from a missing one.
+constexpr double kSmallBlockVolumeRel = 0.25;
+
 /// Volume of a tissue bounded by flat, axis-aligned interfaces and the image box: the surface is
 /// exact up to CGAL's boundary search (relative error bound 1e-6 of the image diagonal), so only
 /// round-off remains; 1e-6 relative.
