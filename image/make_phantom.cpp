@@ -1,0 +1,37 @@
+// Dispatch over the phantom kinds; make_phantom.h states the contract.
+#include "image/make_phantom.h"
+
+#include "core/errors.h"
+#include "image/no_background.h"
+
+namespace tissuemesh {
+
+std::string phantom_label_legend(const PhantomParams& p) {
+  if (p.kind == "folded-layers")
+    return std::string(p.no_background ? "" : "0 air, ") +
+           "1 scalp, 2 skull, 3 csf, 4 grey, 5 white, 6 deep, 7 lesion";
+  std::string legend = std::string(p.no_background ? "" : "0 air, ") +
+                       "1 fat, 2 fgt, 3 tumor, 4 skin, 5 muscle, 6 thorax";
+  if (p.kind == "fragmented-breast") legend += ", 7 vessel";
+  if (p.kind == "fragmented-breast" || p.no_background) legend += ", 8 clip";
+  if (p.no_background) legend += ", 9 padding";
+  return legend;
+}
+
+LabelImage make_phantom(const PhantomParams& p) {
+  if (p.kind == "folded-layers") return make_folded_layers(p.folded_layers, p.no_background);
+  LabelImage image;
+  if (p.kind == "fragmented-breast") {
+    image = make_fragmented_breast(p.fragmented_breast);
+  } else if (p.kind == "breast") {
+    image = make_breast_phantom(p);
+    if (p.no_background) add_tiny_tissue(image, kFat, hard_label::kClip, p.seed + 7);
+  } else {
+    throw InputError("phantom parameter kind: unknown phantom kind '" + p.kind +
+                     "' (supported: breast, fragmented-breast, folded-layers)");
+  }
+  if (p.no_background) fill_background(image, hard_label::kPadding);
+  return image;
+}
+
+}  // namespace tissuemesh
