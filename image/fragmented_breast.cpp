@@ -4,9 +4,9 @@
 // main FGT (noise is evaluated only near the breast surface and inside the FGT envelope, so a
 // 32 M voxel image stays fast); the tumour and the vessel tree are painted over their bounding
 // boxes; skin is stamped from the air voxels next to the body (work ~ surface, no full-size
-// distance buffer); the clip and then the islands come last, because an island is placed only
-// where a box around it is all fat: nothing painted later can touch it, so each stays a
-// component of its own.
+// distance buffer); the clip, the islands and the diagonal contacts come last, because an
+// island is placed only where a box around it is all fat and a contact only where its six face
+// neighbours are: nothing painted later touches either by a face, so each stays a component.
 #ifdef __clang__
 #pragma STDC FP_CONTRACT OFF
 #endif
@@ -297,6 +297,37 @@ int add_islands(LabelImage& img, const FragmentedBreastParams& p, Rng& rng) {
   return placed;
 }
 
+// Diagonal contacts: one-voxel FGT islands that touch other FGT only along an edge or at a
+// corner, as noisy segmentations do (separate 6-connected components, one 26-connected tissue):
+// a mesher sees a non-manifold edge or vertex there. Four draws per attempt, whatever the outcome.
+int add_diagonal_contacts(LabelImage& img, int wanted, Rng& rng) {
+  static const std::array<std::array<int, 3>, 20> kDiagonal = [] {
+    std::array<std::array<int, 3>, 20> out{};
+    int n = 0;
+    for (int k = -1; k <= 1; ++k)
+      for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i)
+          if ((i != 0) + (j != 0) + (k != 0) >= 2) out[n++] = {i, j, k};
+    return out;
+  }();
+  const std::array<int, 3> n = img.dims;
+  const long long max_attempts = 400LL * wanted + 100000;
+  int placed = 0;
+  for (long long attempt = 0; attempt < max_attempts && placed < wanted; ++attempt) {
+    const std::array<int, 3> v{rng.index(n[0]), rng.index(n[1]), rng.index(n[2])};
+    const std::array<int, 3>& d = kDiagonal[rng.index(20)];
+    const int i = v[0] + d[0], j = v[1] + d[1], k = v[2] + d[2];
+    if (i < 1 || j < 1 || k < 1 || i >= n[0] - 1 || j >= n[1] - 1 || k >= n[2] - 1) continue;
+    if (img.at(v[0], v[1], v[2]) != kFgt || img.at(i, j, k) != kFat) continue;
+    if (img.at(i - 1, j, k) != kFat || img.at(i + 1, j, k) != kFat || img.at(i, j - 1, k) != kFat ||
+        img.at(i, j + 1, k) != kFat || img.at(i, j, k - 1) != kFat || img.at(i, j, k + 1) != kFat)
+      continue;
+    img.labels[img.index(i, j, k)] = kFgt;
+    ++placed;
+  }
+  return placed;
+}
+
 }  // namespace
 
 void check_fragmented_breast_params(const FragmentedBreastParams& p,
@@ -325,6 +356,7 @@ void check_fragmented_breast_params(const FragmentedBreastParams& p,
   range("vessel_max_diameter_mm", p.vessel_max_diameter_mm, 0.1, 5.0);
   range("vessel_min_diameter_mm", p.vessel_min_diameter_mm, 0.1, p.vessel_max_diameter_mm);
   range("fgt_islands", p.fgt_islands, 0, 200000);
+  range("fgt_diagonal_contacts", p.fgt_diagonal_contacts, 0, 100000);
   range("island_max_diameter_mm", p.island_max_diameter_mm, 0.0, 10.0);
   range("tumor_diameter_mm", p.tumor_diameter_mm, 1.0, std::min(60.0, 0.3 * p.size_mm.minCoeff()));
 }
@@ -344,6 +376,7 @@ FragmentedBreastParams parse_fragmented_breast_params(YamlMap& map) {
   p.vessel_max_diameter_mm = map.number("vessel_max_diameter_mm", p.vessel_max_diameter_mm);
   p.vessel_min_diameter_mm = map.number("vessel_min_diameter_mm", p.vessel_min_diameter_mm);
   p.fgt_islands = map.integer("fgt_islands", p.fgt_islands);
+  p.fgt_diagonal_contacts = map.integer("fgt_diagonal_contacts", p.fgt_diagonal_contacts);
   p.island_max_diameter_mm = map.number("island_max_diameter_mm", p.island_max_diameter_mm);
   p.tumor_diameter_mm = map.number("tumor_diameter_mm", p.tumor_diameter_mm);
   check_fragmented_breast_params(p, [&](const char* key) { return map.where(key); });
@@ -359,6 +392,7 @@ void fragmented_breast_params_to_yaml(const FragmentedBreastParams& p, YAML::Emi
   out << YAML::Key << "vessel_max_diameter_mm" << YAML::Value << p.vessel_max_diameter_mm;
   out << YAML::Key << "vessel_min_diameter_mm" << YAML::Value << p.vessel_min_diameter_mm;
   out << YAML::Key << "fgt_islands" << YAML::Value << p.fgt_islands;
+  out << YAML::Key << "fgt_diagonal_contacts" << YAML::Value << p.fgt_diagonal_contacts;
   out << YAML::Key << "island_max_diameter_mm" << YAML::Value << p.island_max_diameter_mm;
   out << YAML::Key << "tumor_diameter_mm" << YAML::Value << p.tumor_diameter_mm << YAML::EndMap;
 }
@@ -369,8 +403,8 @@ LabelImage make_fragmented_breast(const FragmentedBreastParams& p) {
   LabelImage img = make_grid(p);
   img.labels.assign(img.voxel_count(), kAir);
   const Geometry g(p);
-  // One stream in a fixed order: vessels, islands (the island count comes last, so changing it
-  // leaves everything else unchanged). The clip has its own seed.
+  // One stream in a fixed order: vessels, islands, diagonal contacts (the counts come last, so
+  // changing them leaves everything before unchanged). The clip has its own seed.
   Rng rng(p.seed);
   label_body(img, g);
   add_tumor(img, g, p.tumor_diameter_mm);
@@ -381,6 +415,10 @@ LabelImage make_fragmented_breast(const FragmentedBreastParams& p) {
   if (placed < p.fgt_islands)
     throw InputError(where("fgt_islands") + ": only " + std::to_string(placed) + " of " +
                      std::to_string(p.fgt_islands) + " islands fit in the fat; ask fewer or a larger size_mm");
+  const int contacts = add_diagonal_contacts(img, p.fgt_diagonal_contacts, rng);
+  if (contacts < p.fgt_diagonal_contacts)
+    throw InputError(where("fgt_diagonal_contacts") + ": only " + std::to_string(contacts) + " of " +
+                     std::to_string(p.fgt_diagonal_contacts) + " contacts found room; ask fewer");
   return img;
 }
 

@@ -17,7 +17,9 @@
 //    where the surface is square to it, more where it is oblique;
 //  - FGT: a main glandular body (noise-thresholded: lobular, with its own fragments) plus
 //    fgt_islands islands in the fat, each a separate 6-connected component (one voxel up to
-//    island_max_diameter_mm across) with at least one voxel of fat between it and anything else;
+//    island_max_diameter_mm across) with at least one voxel of fat between it and anything else,
+//    plus fgt_diagonal_contacts one-voxel islands that touch other FGT only along an edge or at
+//    a corner (separate 6-connected components, a non-manifold contact for a mesher);
 //  - vessels: a branching tree of tubes, diameter from vessel_max_diameter_mm at the chest wall
 //    down to vessel_min_diameter_mm; a tube is painted at least a voxel diagonal wide (every
 //    voxel its axis crosses), so the thinnest are 6-connected chains one or two voxels across;
@@ -67,6 +69,9 @@ struct FragmentedBreastParams {
   double vessel_min_diameter_mm = 0.5;
   /// Isolated FGT islands in the fat, in [0, 200000]; throws if they do not fit. Default 3000.
   int fgt_islands = 3000;
+  /// One-voxel FGT islands touching other FGT only by an edge or a corner, in [0, 100000];
+  /// throws if they do not find room. Default 500.
+  int fgt_diagonal_contacts = 500;
   /// Largest island extent, mm in [0, 10] (0: every island is one voxel). Sizes are skewed
   /// towards one voxel. Default 3.
   double island_max_diameter_mm = 3.0;

@@ -32,6 +32,7 @@ FragmentedBreastParams small_params() {
   FragmentedBreastParams p;
   p.size_mm = {40.0, 40.0, 32.0};  // 80 x 80 x 64 voxels
   p.fgt_islands = 150;
+  p.fgt_diagonal_contacts = 50;
   p.tumor_diameter_mm = 6.0;
   return p;
 }
@@ -59,7 +60,31 @@ TEST(FragmentedBreast, DefaultGridIsIsotropicHalfMillimetreWithEveryLabel) {
 TEST(FragmentedBreast, DefaultHasThousandsOfSeparateFgtComponents) {
   const std::size_t components = count_fgt_components(default_image());
   EXPECT_GE(components, 2000u);
-  EXPECT_GE(components, static_cast<std::size_t>(FragmentedBreastParams{}.fgt_islands) + 1);
+  const FragmentedBreastParams p;
+  EXPECT_GE(components, static_cast<std::size_t>(p.fgt_islands + p.fgt_diagonal_contacts) + 1);
+}
+
+TEST(FragmentedBreast, DiagonalContactsTouchFgtOnlyByAnEdgeOrACorner) {
+  const LabelImage& img = default_image();
+  LabelImage fgt = img;
+  for (std::int32_t& v : fgt.labels) v = v == kFgt ? 1 : 0;
+  const ComponentMap map = find_components(fgt);
+  std::size_t contacts = 0;
+  for (const LabelComponent& c : map.components) {
+    if (c.voxels != 1) continue;
+    const auto [i, j, k] = c.seed;
+    bool diagonal = false;
+    for (int dk = -1; dk <= 1; ++dk)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          if ((di != 0) + (dj != 0) + (dk != 0) < 2) continue;
+          const int a = i + di, b = j + dj, e = k + dk;
+          if (a >= 0 && b >= 0 && e >= 0 && a < img.dims[0] && b < img.dims[1] && e < img.dims[2])
+            diagonal = diagonal || img.at(a, b, e) == kFgt;
+        }
+    contacts += diagonal;
+  }
+  EXPECT_GE(contacts, static_cast<std::size_t>(FragmentedBreastParams{}.fgt_diagonal_contacts));
 }
 
 TEST(FragmentedBreast, ComponentCountFollowsTheRequestedIslands) {
@@ -68,7 +93,8 @@ TEST(FragmentedBreast, ComponentCountFollowsTheRequestedIslands) {
     p.fgt_islands = islands;
     p.seed = 3;
     const LabelImage img = make_fragmented_breast(p);
-    EXPECT_GE(count_fgt_components(img), static_cast<std::size_t>(islands) + 1) << islands << " islands";
+    EXPECT_GE(count_fgt_components(img), static_cast<std::size_t>(islands + p.fgt_diagonal_contacts) + 1)
+        << islands << " islands";
   }
 }
 
@@ -190,6 +216,7 @@ TEST(FragmentedBreast, OutOfBoundsParametersAreInputErrorsNamingTheKey) {
       {"vessel_max_diameter_mm", [](auto& p) { p.vessel_max_diameter_mm = 8.0; }},
       {"vessel_min_diameter_mm", [](auto& p) { p.vessel_min_diameter_mm = 3.0; }},
       {"fgt_islands", [](auto& p) { p.fgt_islands = -1; }},
+      {"fgt_diagonal_contacts", [](auto& p) { p.fgt_diagonal_contacts = 100001; }},
       {"island_max_diameter_mm", [](auto& p) { p.island_max_diameter_mm = 11.0; }},
       {"tumor_diameter_mm", [](auto& p) { p.tumor_diameter_mm = 13.0; }},  // > 0.3 x 40 mm
       {"seed", [](auto& p) { p.seed = 2147483648u; }},
