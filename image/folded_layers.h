@@ -13,7 +13,8 @@
 // thickness of scalp, skull, CSF (between the sphere and the folds' mean) and grey.
 // Each layer is thick enough at the voxel scale that 6-neighbouring voxels never skip a layer
 // (checked: thickness >= spacing + A (+ the fold's change over one voxel)); so every tissue
-// touches only its two neighbours (and the tiny tissue).
+// touches only its two neighbours (and the tiny tissue). At a few voxels per period the folds
+// alias: CSF, grey and white hold small detached pieces, each still between its neighbours.
 // no_background (make_folded_layers' argument): R0 grows to reach past the box corners, so no
 // voxel is air and scalp, skull, CSF, grey and white are cut by the box: each touches all six
 // faces, with the folded interfaces running into them.
