@@ -299,8 +299,10 @@ int add_islands(LabelImage& img, const FragmentedBreastParams& p, Rng& rng) {
 
 // Diagonal contacts: one-voxel FGT islands that touch other FGT only along an edge or at a
 // corner, as noisy segmentations do (separate 6-connected components, one 26-connected tissue):
-// a mesher sees a non-manifold edge or vertex there. Four draws per attempt, whatever the outcome.
+// a mesher sees a non-manifold edge or vertex there. Each attempt draws an FGT voxel (from the
+// list of them in scan order: 4 bytes per FGT voxel) and one of its 20 diagonal neighbours.
 int add_diagonal_contacts(LabelImage& img, int wanted, Rng& rng) {
+  if (wanted == 0) return 0;
   static const std::array<std::array<int, 3>, 20> kDiagonal = [] {
     std::array<std::array<int, 3>, 20> out{};
     int n = 0;
@@ -311,18 +313,24 @@ int add_diagonal_contacts(LabelImage& img, int wanted, Rng& rng) {
     return out;
   }();
   const std::array<int, 3> n = img.dims;
+  std::vector<std::uint32_t> fgt;  // at most 60 million voxels: fits
+  for (std::size_t v = 0; v < img.labels.size(); ++v)
+    if (img.labels[v] == kFgt) fgt.push_back(static_cast<std::uint32_t>(v));
+  if (fgt.empty()) return 0;
   const long long max_attempts = 400LL * wanted + 100000;
   int placed = 0;
   for (long long attempt = 0; attempt < max_attempts && placed < wanted; ++attempt) {
-    const std::array<int, 3> v{rng.index(n[0]), rng.index(n[1]), rng.index(n[2])};
+    const std::size_t v = fgt[static_cast<std::size_t>(rng.uniform() * fgt.size())];
     const std::array<int, 3>& d = kDiagonal[rng.index(20)];
-    const int i = v[0] + d[0], j = v[1] + d[1], k = v[2] + d[2];
+    const int i = static_cast<int>(v % n[0]) + d[0];
+    const int j = static_cast<int>(v / n[0] % n[1]) + d[1];
+    const int k = static_cast<int>(v / (static_cast<std::size_t>(n[0]) * n[1])) + d[2];
     if (i < 1 || j < 1 || k < 1 || i >= n[0] - 1 || j >= n[1] - 1 || k >= n[2] - 1) continue;
-    if (img.at(v[0], v[1], v[2]) != kFgt || img.at(i, j, k) != kFat) continue;
+    if (img.at(i, j, k) != kFat) continue;
     if (img.at(i - 1, j, k) != kFat || img.at(i + 1, j, k) != kFat || img.at(i, j - 1, k) != kFat ||
         img.at(i, j + 1, k) != kFat || img.at(i, j, k - 1) != kFat || img.at(i, j, k + 1) != kFat)
       continue;
-    img.labels[img.index(i, j, k)] = kFgt;
+    img.labels[img.index(i, j, k)] = kFgt;  // not added to the list: contacts touch old FGT only
     ++placed;
   }
   return placed;

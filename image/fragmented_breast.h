@@ -27,8 +27,8 @@
 //  - a lobulated tumour; a marker clip of 33 voxels (no_background.h) in the fat.
 // Labels: 0 air, 1 fat, 2 fgt, 3 tumor, 4 skin, 5 muscle, 6 thorax (the phantom's values),
 // 7 vessel, 8 clip; 9 padding is what make_phantom's no_background puts in place of air.
-// Memory: the LabelImage (4 bytes per voxel) and buffers of the size of the surface, no
-// full-size scratch. Defaults: 200 x 200 x 160 voxels of 0.5 mm (6.4 M).
+// Memory: the LabelImage (4 bytes per voxel), a list of the surface voxels and one of the FGT
+// voxels (4 bytes each); no full-size scratch. Defaults: 200 x 200 x 160 voxels of 0.5 mm (6.4 M).
 //
 // Determinism: same parameters -> same image bit for bit (phantom_random.h).
 #pragma once
