@@ -6,18 +6,6 @@
 
 namespace tissuemesh {
 
-std::string phantom_label_legend(const PhantomParams& p) {
-  if (p.kind == "folded-layers")
-    return std::string(p.no_background ? "" : "0 air, ") +
-           "1 scalp, 2 skull, 3 csf, 4 grey, 5 white, 6 deep, 7 lesion";
-  std::string legend = std::string(p.no_background ? "" : "0 air, ") +
-                       "1 fat, 2 fgt, 3 tumor, 4 skin, 5 muscle, 6 thorax";
-  if (p.kind == "fragmented-breast") legend += ", 7 vessel";
-  if (p.kind == "fragmented-breast" || p.no_background) legend += ", 8 clip";
-  if (p.no_background) legend += ", 9 padding";
-  return legend;
-}
-
 LabelImage make_phantom(const PhantomParams& p) {
   if (p.kind == "folded-layers") return make_folded_layers(p.folded_layers, p.no_background);
   LabelImage image;

@@ -12,12 +12,7 @@
 #include "core/label_image.h"
 #include "image/phantom.h"
 
-#include <string>
-
 namespace tissuemesh {
-
-/// Label value lists per kind, for messages and docs: "0 air, 1 fat, ...".
-std::string phantom_label_legend(const PhantomParams& params);
 
 /// Generates the label map of params.kind.
 LabelImage make_phantom(const PhantomParams& params);
