@@ -10,7 +10,7 @@
 #include "core/errors.h"
 #include "core/output_dir.h"
 #include "image/image_io.h"
-#include "image/phantom.h"
+#include "image/make_phantom.h"
 
 #include <cstdio>
 #include <iostream>
@@ -93,7 +93,7 @@ void add_demo_command(CLI::App& cli, Invocation& run) {
       LabelImage generated;
       {
         auto stage = progress.stage("generate phantom");
-        generated = make_breast_phantom(config.phantom);
+        generated = make_phantom(config.phantom);
       }
       // Mesh what was written, not what is in memory: the demo then exercises the same reader a
       // user's image goes through.

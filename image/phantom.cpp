@@ -546,6 +546,19 @@ PhantomParams parse_phantom_params(YamlMap& map) {
   for (const ScalarParam& s : kScalars) p.*s.field = map.number(s.key, p.*s.field);
   p.fgt_islands = map.integer("fgt_islands", p.fgt_islands);
   check_params(p, [&](const char* key) { return map.where(key); });
+  p.kind = map.text("kind", p.kind);
+  if (p.kind != "breast" && p.kind != "fragmented-breast" && p.kind != "folded-layers")
+    throw InputError(map.where("kind") + ": unknown phantom kind '" + p.kind +
+                     "' (supported: breast, fragmented-breast, folded-layers)");
+  p.no_background = map.boolean("no_background", p.no_background);
+  YamlMap fragmented = map.map("fragmented_breast");
+  p.fragmented_breast = parse_fragmented_breast_params(fragmented);
+  fragmented.finish();
+  YamlMap folded = map.map("folded_layers");
+  p.folded_layers = parse_folded_layers_params(folded);
+  folded.finish();
+  if (p.kind == "folded-layers" && p.no_background)
+    check_folded_layers_params(p.folded_layers, true, [&](const char* key) { return folded.where(key); });
   return p;
 }
 
@@ -558,7 +571,14 @@ void phantom_params_to_yaml(const PhantomParams& p, YAML::Emitter& out) {
   vec("spacing_mm", p.spacing_mm);
   vec("tumor_center_mm", p.tumor_center_mm);
   for (const ScalarParam& s : kScalars) out << YAML::Key << s.key << YAML::Value << p.*s.field;
-  out << YAML::Key << "fgt_islands" << YAML::Value << p.fgt_islands << YAML::EndMap;
+  out << YAML::Key << "fgt_islands" << YAML::Value << p.fgt_islands;
+  out << YAML::Key << "kind" << YAML::Value << p.kind;
+  out << YAML::Key << "no_background" << YAML::Value << p.no_background;
+  out << YAML::Key << "fragmented_breast" << YAML::Value;
+  fragmented_breast_params_to_yaml(p.fragmented_breast, out);
+  out << YAML::Key << "folded_layers" << YAML::Value;
+  folded_layers_params_to_yaml(p.folded_layers, out);
+  out << YAML::EndMap;
 }
 
 LabelImage make_breast_phantom(const PhantomParams& p) {

@@ -24,10 +24,13 @@
 
 #include "core/label_image.h"
 #include "core/yaml_map.h"
+#include "image/folded_layers.h"
+#include "image/fragmented_breast.h"
 
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <string>
 
 namespace tissuemesh {
 
@@ -81,6 +84,17 @@ struct PhantomParams {
   /// between it and any other FGT, tumour, muscle or skin. The default breast holds 20; small
   /// breasts hold fewer (make_breast_phantom then throws). Default 5.
   int fgt_islands = 5;
+
+  // Which generator make_phantom (image/make_phantom.h) runs; the keys above are the breast's.
+  /// "breast" (this file), "fragmented-breast" or "folded-layers". Default "breast".
+  std::string kind = "breast";
+  /// No label 0: air becomes padding (label 9) and a 33-voxel marker clip (label 8) goes into
+  /// the fat for the two breasts; the folded layers fill the box instead. Default false.
+  bool no_background = false;
+  /// Parameters of kind fragmented-breast (YAML: fragmented_breast).
+  FragmentedBreastParams fragmented_breast;
+  /// Parameters of kind folded-layers (YAML: folded_layers).
+  FoldedLayersParams folded_layers;
 };
 
 /// Reads the phantom keys of `map` (all optional; absent keys keep their default) and validates

@@ -88,6 +88,27 @@ TEST(Cli, PrintConfigShowsEveryKey) {
     EXPECT_NE(r.out.find(key), std::string::npos) << key;
 }
 
+TEST(Cli, PhantomKindsAndNoBackground) {
+  const auto dir = test::scratch_dir();
+  const auto r = run_cli("phantom --kind folded-layers --no-background --seed 2 --out f.nii.gz", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const LabelImage img = read_label_image((dir / "f.nii.gz").string());
+  const auto counts = img.label_counts();
+  EXPECT_EQ(counts.count(0), 0u) << "no background";
+  EXPECT_EQ(counts.size(), 7u) << "six layers and the lesion";
+  EXPECT_NE(read_file(dir / "f.nii.gz.json").find("kind: folded-layers"), std::string::npos);
+  // Breast-only options on another kind: a bad-input exit naming them.
+  const auto bad = run_cli("phantom --kind fragmented-breast --spacing 1,1,1 --out g.nii.gz", dir);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--spacing"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "g.nii.gz"));
+  for (const char* config : {"hard-breast.yaml", "hard-breast-no-background.yaml", "folded-layers.yaml"}) {
+    const auto p = run_cli("mesh x.nii -c '" + test::config_path(config) + "' --print-config", dir);
+    EXPECT_EQ(p.exit_code, 0) << config << ": " << p.err;
+    EXPECT_NE(p.out.find("kind: "), std::string::npos) << config;
+  }
+}
+
 TEST(Cli, PhantomIsByteIdenticalForTheSameSeedAndInfoDescribesIt) {
   const auto dir = test::scratch_dir();
   ASSERT_EQ(run_cli("phantom --out a.nii.gz --seed 3", dir).exit_code, 0);
