@@ -10,6 +10,7 @@
 #endif
 
 #include "image/folded_layers.h"
+#include "image/param_bounds.h"
 
 #include "core/errors.h"
 #include "image/no_background.h"
@@ -50,16 +51,9 @@ Radii radii(const FoldedLayersParams& p, bool no_background) {
 
 void check_folded_layers_params(const FoldedLayersParams& p, bool no_background,
                                 const std::function<std::string(const char*)>& where) {
-  auto fail = [&](const char* key, const std::string& rule) {
-    throw InputError(where(key) + ": " + rule);
-  };
-  auto range = [&](const char* key, double v, double lo, double hi) {
-    if (!(v >= lo && v <= hi)) {
-      std::ostringstream msg;
-      msg << "must be in [" << lo << ", " << hi << "], got " << v;
-      fail(key, msg.str());
-    }
-  };
+  const ParamBounds bounds(where);
+  auto fail = [&](const char* key, const std::string& rule) { bounds.fail(key, rule); };
+  auto range = [&](const char* key, double v, double lo, double hi) { bounds.range(key, v, lo, hi); };
   if (p.seed > 2147483647u) fail("seed", "must be an integer in [0, 2147483647]");
   range("spacing_mm", p.spacing_mm, 0.1, 5.0);
   range("size_mm", p.size_mm, 10.0, 1000.0);

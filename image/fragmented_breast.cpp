@@ -12,6 +12,7 @@
 #endif
 
 #include "image/fragmented_breast.h"
+#include "image/param_bounds.h"
 
 #include "core/errors.h"
 #include "image/no_background.h"
@@ -340,16 +341,9 @@ int add_diagonal_contacts(LabelImage& img, int wanted, Rng& rng) {
 
 void check_fragmented_breast_params(const FragmentedBreastParams& p,
                                     const std::function<std::string(const char*)>& where) {
-  auto fail = [&](const char* key, const std::string& rule) {
-    throw InputError(where(key) + ": " + rule);
-  };
-  auto range = [&](const char* key, double v, double lo, double hi) {
-    if (!(v >= lo && v <= hi)) {
-      std::ostringstream msg;
-      msg << "must be in [" << lo << ", " << hi << "], got " << v;
-      fail(key, msg.str());
-    }
-  };
+  const ParamBounds bounds(where);
+  auto fail = [&](const char* key, const std::string& rule) { bounds.fail(key, rule); };
+  auto range = [&](const char* key, double v, double lo, double hi) { bounds.range(key, v, lo, hi); };
   if (p.seed > 2147483647u) fail("seed", "must be an integer in [0, 2147483647]");
   range("spacing_mm", p.spacing_mm, 0.1, 2.0);
   for (int a = 0; a < 3; ++a) range("size_mm", p.size_mm[a], 20.0, 600.0);

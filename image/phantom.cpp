@@ -12,8 +12,10 @@
 #endif
 
 #include "image/phantom.h"
+#include "image/param_bounds.h"
 
 #include "core/errors.h"
+#include "image/phantom_random.h"
 
 #include <Eigen/Dense>
 
@@ -49,39 +51,9 @@ constexpr double kMaxVoxels = 60e6;          // ~0.5 GB of buffers, far beyond a
 constexpr float kFar = std::numeric_limits<float>::infinity();
 
 // sin and cos of x (radians) by Taylor series after reduction to [-pi, pi]; see the file comment.
-void sin_cos(double x, double& s, double& c) {
-  x -= 2.0 * kPi * std::floor(x / (2.0 * kPi) + 0.5);
-  s = c = 0.0;
-  double term = 1.0;                // x^n / n!
-  for (int n = 0; n < 40; ++n) {  // pi^40 / 40! < 1e-27: converged to double precision
-    (n % 2 ? s : c) += (n % 4 < 2 ? term : -term);
-    term *= x / (n + 1);
-  }
-}
+using phantom_random::Rng;
+using phantom_random::sin_cos;
 
-// Uniform numbers from raw mt19937 output (the std distributions are implementation-defined).
-// Callers draw in separate statements or braced lists: the evaluation order of function
-// arguments and operands is unspecified and differs between compilers.
-class Rng {
- public:
-  explicit Rng(std::uint32_t seed) : gen_(seed) {}
-  double uniform() { return static_cast<double>(gen_()) * (1.0 / 4294967296.0); }  // [0, 1)
-  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-  int index(int n) { return static_cast<int>(uniform() * n); }
-  Vector3d unit_vector() {  // rejection from the cube: isotropic without trigonometry
-    for (;;) {
-      const Vector3d v{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};  // left to right
-      const double n2 = v.squaredNorm();
-      if (n2 > 1e-4 && n2 <= 1.0) return v / std::sqrt(n2);
-    }
-  }
-
- private:
-  std::mt19937 gen_;
-};
-
-// Legendre polynomials: P_l(u.d) are zero-mean on the sphere and orthogonal to the centroid
-// shift (l = 1), so lobulating a radius with them keeps volume and centre nearly unchanged.
 double legendre(int l, double t) {
   double t2 = t * t;
   if (l == 2) return 0.5 * (3.0 * t2 - 1.0);
@@ -129,16 +101,10 @@ double value_noise(const Vector3d& p, std::uint32_t seed) {
     const Eigen::Array3d t = (g - f).array();
     const Eigen::Array3d w = t * t * (3.0 - 2.0 * t);
     for (int corner = 0; corner < 8; ++corner) {
-      std::uint32_t h = (seed + octave) * 0x9E3779B9u;
-      double weight = octave == 0 ? 1.0 : 0.5;
-      for (int a = 0; a < 3; ++a) {
-        const int bit = (corner >> a) & 1;
-        h ^= static_cast<std::uint32_t>(static_cast<std::int64_t>(f[a]) + bit) * 0x85EBCA6Bu;
-        h = (h ^ (h >> 15)) * 0xC2B2AE35u;
-        h ^= h >> 13;
-        weight *= bit ? w[a] : 1.0 - w[a];
-      }
-      total += weight * (static_cast<double>(h) * (2.0 / 4294967296.0) - 1.0);
+      double weight;
+      const double value = phantom_random::lattice_corner((seed + octave) * 0x9E3779B9u, f, w, corner, weight);
+      // The octave factor is a power of two: multiplying it last rounds exactly as first.
+      total += (octave == 0 ? 1.0 : 0.5) * weight * value;
     }
   }
   return total / 1.5;
@@ -328,20 +294,13 @@ constexpr ScalarParam kScalars[] = {
 
 // Bounds of every parameter in one place; `where(key)` prefixes the message (file and key).
 void check_params(const PhantomParams& p, const std::function<std::string(const char*)>& where) {
-  auto fail = [&](const char* key, const std::string& rule) {
-    throw InputError(where(key) + ": " + rule);
-  };
+  const ParamBounds bounds(where);
+  auto fail = [&](const char* key, const std::string& rule) { bounds.fail(key, rule); };
+  auto range = [&](const char* key, double v, double lo, double hi) { bounds.range(key, v, lo, hi); };
   auto format_vec = [](const Vector3d& v) {
     std::ostringstream out;
     out << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
     return out.str();
-  };
-  auto range = [&](const char* key, double v, double lo, double hi) {
-    if (!(v >= lo && v <= hi)) {
-      std::ostringstream msg;
-      msg << "must be in [" << lo << ", " << hi << "], got " << v;
-      fail(key, msg.str());
-    }
   };
   if (!((p.spacing_mm.array() >= 0.1) && (p.spacing_mm.array() <= 5.0)).all())  // NaN fails too
     fail("spacing_mm", "each spacing must be in [0.1, 5] mm, got " + format_vec(p.spacing_mm));

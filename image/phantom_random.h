@@ -56,6 +56,22 @@ class Rng {
   std::mt19937 gen_;
 };
 
+/// The hashed value in [-1, 1] of corner `corner` (bit a: +1 along axis a) of the lattice cell
+/// whose lowest corner is `f` (integer coordinates), hashing from the start value `h`; `weight`
+/// gets the corner's smoothstep trilinear weight from the cell-local weights `w`.
+inline double lattice_corner(std::uint32_t h, const Eigen::Vector3d& f, const Eigen::Array3d& w, int corner,
+                             double& weight) {
+  weight = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    const int bit = (corner >> a) & 1;
+    h ^= static_cast<std::uint32_t>(static_cast<std::int64_t>(f[a]) + bit) * 0x85EBCA6Bu;
+    h = (h ^ (h >> 15)) * 0xC2B2AE35u;
+    h ^= h >> 13;
+    weight *= bit ? w[a] : 1.0 - w[a];
+  }
+  return static_cast<double>(h) * (2.0 / 4294967296.0) - 1.0;
+}
+
 /// Value noise in [-1, 1] on a lattice of cell size `cell_mm`: smoothstep-weighted trilinear
 /// interpolation of hashed lattice values (stateless: the same at every point, in any order).
 inline double lattice_noise(const Eigen::Vector3d& p, double cell_mm, std::uint32_t seed) {
@@ -65,16 +81,9 @@ inline double lattice_noise(const Eigen::Vector3d& p, double cell_mm, std::uint3
   const Eigen::Array3d w = t * t * (3.0 - 2.0 * t);
   double total = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
-    std::uint32_t h = seed * 0x9E3779B9u + 0x7F4A7C15u;
-    double weight = 1.0;
-    for (int a = 0; a < 3; ++a) {
-      const int bit = (corner >> a) & 1;
-      h ^= static_cast<std::uint32_t>(static_cast<std::int64_t>(f[a]) + bit) * 0x85EBCA6Bu;
-      h = (h ^ (h >> 15)) * 0xC2B2AE35u;
-      h ^= h >> 13;
-      weight *= bit ? w[a] : 1.0 - w[a];
-    }
-    total += weight * (static_cast<double>(h) * (2.0 / 4294967296.0) - 1.0);
+    double weight;
+    const double value = lattice_corner(seed * 0x9E3779B9u + 0x7F4A7C15u, f, w, corner, weight);
+    total += weight * value;
   }
   return total;
 }
