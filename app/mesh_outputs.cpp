@@ -88,6 +88,11 @@ void surface_into(const LabelImage& labels, const std::string& image_name, const
   write_text(out.stage("report.json"), record.dump(2) + "\n");
   write_text(out.stage("report.txt"), text);
   if (result.volume && !write_mesh) fail_nonconforming(out, result.volume->conformity);
+  if (!result.volume_refused.empty()) {
+    out.commit();
+    throw MeshingError("no tet mesh: " + result.volume_refused + "; report.txt and report.json in " +
+                       out.final_path("").string());
+  }
 }
 
 }  // namespace tissuemesh::app

@@ -400,6 +400,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
   }
   j["table2_steps"] = table2_json(steps_table(r));
   if (r.volume) j["table3_total_cells"] = r.volume->meshing.mesh.tets.size();
+  if (!r.volume_refused.empty()) j["volume_mesh_refused"] = r.volume_refused;
   return j;
 }
 
@@ -463,6 +464,7 @@ std::string surface_job_text(const SurfaceJobResult& r) {
     o << sliver_repair_text(v.meshing.repair);
     for (const auto& w : v.meshing.warnings) o << "WARNING: " << w << "\n";
   }
+  if (!r.volume_refused.empty()) o << "\nno volume mesh: " << r.volume_refused << "\n";
   return o.str();
 }
 

@@ -2,12 +2,24 @@
 
 #include "pipeline/mesh_job.h"
 
+#include "core/number_format.h"
+
 namespace tissuemesh {
 
 namespace {
 
 void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, Progress& progress) {
   if (!r.checks.valid()) return;
+  if (r.quality.min_angle_deg < kMinAngleForVolumeDeg) {
+    // Such slivers of triangles make CGAL's protecting balls at the junctions ever smaller: the
+    // volume stage would run for hours, if it ended at all.
+    r.volume_refused = "the surface has a triangle with an angle of " + format_double("%.3f", r.quality.min_angle_deg) +
+                       " deg (under " + format_double("%g", kMinAngleForVolumeDeg) +
+                       " deg), too thin for the volume mesher's junction protection to finish in reasonable time; raise "
+                       "surface.target_vertices or give more small islands to their surroundings "
+                       "(surface.min_island_voxels)";
+    return;
+  }
   VolumeStage v;
   v.size_mm = r.remesh ? r.remesh->edge_length_mm : r.quality.mean_edge_mm;  // r.quality: of r.surface()
   const ApproachField* field = r.approach ? &*r.approach : nullptr;

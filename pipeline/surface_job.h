@@ -45,14 +45,21 @@ struct SurfaceJobResult {
   SurfaceQuality quality;                   ///< Table 1 figures of surface()
   std::map<int, double> voxel_volume_mm3;   ///< tissue id -> voxel volume of the tissue
   std::optional<VolumeStage> volume;        ///< the tet mesh, when the surface passes its checks
+  /// Why no tet mesh was made although the surface passed its checks (empty otherwise): a surface
+  /// with a near-zero angle (under kMinAngleForVolumeDeg) that Mesh_3's junction protection
+  /// would not finish on.
+  std::string volume_refused;
 
   /// The pipeline's result: the remeshed surface, or the extracted one without remeshing.
   const TriSurface& surface() const { return remesh ? remesh->surface : extraction.surface; }
 };
 
+/// Smallest triangle angle (degrees) of a surface the volume stage accepts.
+inline constexpr double kMinAngleForVolumeDeg = 1.0;
+
 /// Throws InputError for bad labels (see tissue_id_image), MeshingError when the image has no
-/// boundary. A surface failing its checks is returned without a volume mesh (the caller reports
-/// it), not thrown.
+/// boundary. A surface failing its checks, or with an angle under kMinAngleForVolumeDeg
+/// (volume_refused), is returned without a volume mesh (the caller reports it), not thrown.
 SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
                                  Progress& progress);
 
