@@ -6,6 +6,7 @@
 #include "quality/conformity.h"
 
 #include "core/errors.h"
+#include "core/union_find.h"
 
 #include <algorithm>
 #include <array>
@@ -160,11 +161,6 @@ std::size_t count_nonmanifold_edges(const TetMesh& mesh, const std::vector<FaceK
   return bad;
 }
 
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];  // path halving
-  return i;
-}
-
 /// Groups of >= 2 nodes within `tolerance` of each other (transitively). Nodes are binned in cubic
 /// cells of edge 16 * tolerance, found by binary search in the sorted cell list (O(n log n), and no
 /// plane sweep that would compare whole slices of a structured grid). A node is compared with the
@@ -197,8 +193,7 @@ std::size_t count_duplicate_groups(const std::vector<Eigen::Vector3d>& points,
   }
   std::sort(cells.begin(), cells.end());
 
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<int> parent = singleton_sets(static_cast<std::size_t>(n));
   const auto join_if_close = [&](int i, int j) {
     if ((points[i] - points[j]).norm() <= tolerance) {
       parent[find_root(parent, i)] = find_root(parent, j);

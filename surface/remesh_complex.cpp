@@ -8,6 +8,7 @@
 #include "surface/remesh_complex.h"
 
 #include "core/face_key.h"
+#include "core/union_find.h"
 #include "surface/run_at_once.h"
 #include "surface/triangle_geometry.h"
 
@@ -137,12 +138,8 @@ RemeshComplex::VertexFloor RemeshComplex::vertex_floor() const {
   for (std::size_t c = 0; c < curve_closed_.size(); ++c) f.closed_curves += curve_closed_[c] && curve_edges_[c] > 0;
   // Pieces: vertices joined by live triangles; a piece whose vertices are all surface vertices is
   // a closed surface without junctions.
-  std::vector<int> parent(x_.size());
-  for (std::size_t v = 0; v < x_.size(); ++v) parent[v] = static_cast<int>(v);
-  auto root = [&](int v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
+  std::vector<int> parent = singleton_sets(x_.size());
+  auto root = [&](int v) { return find_root(parent, v); };
   for (std::size_t t = 0; t < tri_.size(); ++t)
     if (tri_alive_[t])
       for (int i = 1; i < 3; ++i) parent[root(tri_[t][i])] = root(tri_[t][0]);

@@ -1,6 +1,7 @@
 #include "volume/boundary_pinches.h"
 
 #include "core/face_key.h"
+#include "core/union_find.h"
 #include "quality/tet_faces.h"
 
 #include <algorithm>
@@ -8,7 +9,6 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
-#include <numeric>
 #include <unordered_map>
 
 namespace tissuemesh {
@@ -37,11 +37,6 @@ std::vector<std::uint64_t> pinched_edges(const TetMesh& mesh) {
     if (n > 2) pinched.push_back(key);
   std::sort(pinched.begin(), pinched.end());
   return pinched;
-}
-
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
 }
 
 }  // namespace
@@ -73,8 +68,7 @@ BoundaryPinchRepair open_boundary_pinches(TetMesh& mesh, int max_passes) {
       }
       // Fans: tets around the edge joined across the faces that hold the edge.
       const int n = static_cast<int>(around.size());
-      std::vector<int> parent(n);
-      std::iota(parent.begin(), parent.end(), 0);
+      std::vector<int> parent = singleton_sets(static_cast<std::size_t>(n));
       auto others = [&](int t) {
         std::array<int, 2> o{};
         int k = 0;

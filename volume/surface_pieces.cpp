@@ -1,5 +1,7 @@
 #include "volume/surface_pieces.h"
 
+#include "core/union_find.h"
+
 #include "core/face_key.h"
 
 #include <algorithm>
@@ -12,14 +14,9 @@ namespace tissuemesh {
 
 namespace {
 
-int find(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-
 void unite(std::vector<int>& parent, int a, int b) {
-  a = find(parent, a);
-  b = find(parent, b);
+  a = find_root(parent, a);
+  b = find_root(parent, b);
   if (a != b) parent[std::max(a, b)] = std::min(a, b);
 }
 
@@ -37,8 +34,7 @@ SurfacePieces manifold_pieces(const TriSurface& s) {
   for (int t = 0; t < nt; ++t)
     for (int e = 0; e < 3; ++e) around[edge_key(s.triangles[t][e], s.triangles[t][(e + 1) % 3])].push_back(t);
 
-  std::vector<int> parent(nt);
-  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<int> parent = singleton_sets(s.triangles.size());
   // `inner` marks the edges inside a piece (joined), used again for the fans below: two triangles
   // of one piece sharing an inner edge are joined across it (an edge with triangles of several
   // pairs is a junction edge, so an inner edge joins triangles of one pair only).
@@ -57,7 +53,7 @@ SurfacePieces manifold_pieces(const TriSurface& s) {
   SurfacePieces out;
   std::map<int, int> piece_of_root;  // root triangle -> piece index, in order of first triangle
   for (int t = 0; t < nt; ++t) {
-    const int root = find(parent, t);
+    const int root = find_root(parent, t);
     auto [it, fresh] = piece_of_root.emplace(root, static_cast<int>(out.pieces.size()));
     if (fresh) {
       out.pieces.emplace_back();
@@ -74,8 +70,7 @@ SurfacePieces manifold_pieces(const TriSurface& s) {
       for (int v : s.triangles[piece.source_triangles[lt]]) at_vertex[v].push_back(static_cast<int>(lt));
     std::vector<std::array<int, 3>> local(piece.source_triangles.size(), {-1, -1, -1});
     for (const auto& [v, tris] : at_vertex) {
-      std::vector<int> fan(tris.size());
-      std::iota(fan.begin(), fan.end(), 0);
+      std::vector<int> fan = singleton_sets(tris.size());
       for (std::size_t i = 0; i < tris.size(); ++i)
         for (std::size_t j = i + 1; j < tris.size(); ++j) {
           const auto& a = s.triangles[piece.source_triangles[tris[i]]];
@@ -86,7 +81,7 @@ SurfacePieces manifold_pieces(const TriSurface& s) {
         }
       std::map<int, int> copy_of_fan;
       for (std::size_t i = 0; i < tris.size(); ++i) {
-        auto [it, fresh] = copy_of_fan.emplace(find(fan, static_cast<int>(i)), static_cast<int>(piece.points.size()));
+        auto [it, fresh] = copy_of_fan.emplace(find_root(fan, static_cast<int>(i)), static_cast<int>(piece.points.size()));
         if (fresh) piece.points.push_back(s.points[v]);
         const auto& tri = s.triangles[piece.source_triangles[tris[i]]];
         for (int c = 0; c < 3; ++c)

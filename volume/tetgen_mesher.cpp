@@ -9,6 +9,7 @@
 #include "volume/tetgen_mesher.h"
 
 #include "core/errors.h"
+#include "core/union_find.h"
 
 #define TETLIBRARY
 #include <tetgen.h>
@@ -64,12 +65,8 @@ std::vector<Vector3d> seeds_inside(const TriSurface& s, int id, double& mean_edg
   s.tissue_boundary(id, ids, reversed);
   if (ids.empty()) return {};  // a tissue absent from this surface: nothing to seed
   // Pieces: triangles joined through shared edges (union-find, smallest index as the root).
-  std::vector<int> parent(ids.size());
-  for (std::size_t k = 0; k < ids.size(); ++k) parent[k] = static_cast<int>(k);
-  auto root = [&](int k) {
-    while (parent[k] != k) k = parent[k] = parent[parent[k]];
-    return k;
-  };
+  std::vector<int> parent = singleton_sets(ids.size());
+  auto root = [&](int k) { return find_root(parent, k); };
   std::vector<std::tuple<int, int, int>> edges;  // (min vertex, max vertex, entry)
   for (std::size_t k = 0; k < ids.size(); ++k) {
     const auto& t = s.triangles[ids[k]];
