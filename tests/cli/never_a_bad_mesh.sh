@@ -9,33 +9,33 @@ set -u
 exe=$1; py=$2; src=$3; work=$4
 rm -rf "$work"; mkdir -p "$work"; cd "$work" || exit 1
 fail() { echo "FAIL: $*"; exit 1; }
-for run in 1:fragmented 2:fragmented 3:fragmented 1:fragmented-unrepaired; do
-  seed=${run%%:*}; cfg=${run#*:}
+for item in 1:fragmented 2:fragmented 3:fragmented 1:fragmented-unrepaired; do
+  seed=${item%%:*}; cfg=${item#*:}
   [ -f "labels_$seed.nii.gz" ] ||
     "$py" "$src/tests/cli/inputs/fragmented_labels.py" 64 0.5 "labels_$seed.nii.gz" "$seed" > /dev/null || fail "generator"
-  seed=$seed-$cfg
-  "$exe" mesh "labels_${seed%%-*}.nii.gz" -c "$src/tests/cli/inputs/$cfg.yaml" -o "out_$seed" > "log_$seed.txt" 2> "err_$seed.txt"
+  run=$seed-$cfg
+  "$exe" mesh "labels_$seed.nii.gz" -c "$src/tests/cli/inputs/$cfg.yaml" -o "out_$run" > "log_$run.txt" 2> "err_$run.txt"
   rc=$?
   case "$cfg:$rc" in
     fragmented:0|fragmented-unrepaired:1) ;;
-    *) fail "seed $seed: exit $rc: $(cat "err_$seed.txt")";;
+    *) fail "run $run: exit $rc: $(cat "err_$run.txt")";;
   esac
-  [ -f "out_$seed/report.json" ] || fail "seed $seed: exit $rc and no report.json"
-  conforming=$("$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['result']['conformity']['conforming'])" "out_$seed/report.json")
-  defects=$("$py" -c "import json,sys; print(len(json.load(open(sys.argv[1]))['result']['conformity']['defects']))" "out_$seed/report.json")
+  [ -f "out_$run/report.json" ] || fail "run $run: exit $rc and no report.json"
+  conforming=$("$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['result']['conformity']['conforming'])" "out_$run/report.json")
+  defects=$("$py" -c "import json,sys; print(len(json.load(open(sys.argv[1]))['result']['conformity']['defects']))" "out_$run/report.json")
   case "$rc:$conforming" in
     0:True)
-      [ -f "out_$seed/mesh.vtu" ] || fail "seed $seed: exit 0 without mesh.vtu"
-      opened=$("$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['result']['boundary_pinches_opened']['edges'])" "out_$seed/report.json")
-      [ "$opened" -gt 0 ] || fail "seed $seed: the input no longer pinches; the test needs a harder one"
-      [ "$defects" = 0 ] || fail "seed $seed: conforming with $defects defects listed";;
+      [ -f "out_$run/mesh.vtu" ] || fail "run $run: exit 0 without mesh.vtu"
+      opened=$("$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['result']['boundary_pinches_opened']['edges'])" "out_$run/report.json")
+      [ "$opened" -gt 0 ] || fail "run $run: the input no longer pinches; the test needs a harder one"
+      [ "$defects" = 0 ] || fail "run $run: conforming with $defects defects listed";;
     1:False)
-      [ ! -e "out_$seed/mesh.vtu" ] || fail "seed $seed: a non-conforming mesh.vtu was written"
-      [ "$defects" -gt 0 ] || fail "seed $seed: non-conforming but no defect located"
-      grep -q "where (first" "out_$seed/report.txt" || fail "seed $seed: report.txt does not say where"
-      grep -q "meshing failed: the tet mesh does not conform" "err_$seed.txt" || fail "seed $seed: message: $(cat err_$seed.txt)";;
-    *) fail "seed $seed: exit $rc with conforming=$conforming";;
+      [ ! -e "out_$run/mesh.vtu" ] || fail "run $run: a non-conforming mesh.vtu was written"
+      [ "$defects" -gt 0 ] || fail "run $run: non-conforming but no defect located"
+      grep -q "where (first" "out_$run/report.txt" || fail "run $run: report.txt does not say where"
+      grep -q "meshing failed: the tet mesh does not conform" "err_$run.txt" || fail "run $run: message: $(cat err_$run.txt)";;
+    *) fail "run $run: exit $rc with conforming=$conforming";;
   esac
-  echo "seed $seed: exit $rc, conforming $conforming, $defects defects located, ${opened:-0} pinched edges opened"
+  echo "run $run: exit $rc, conforming $conforming, $defects defects located, ${opened:-0} pinched edges opened"
   opened=
 done
