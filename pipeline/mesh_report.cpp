@@ -169,6 +169,39 @@ nlohmann::json deviations_json(const std::vector<VolumeDeviation>& deviations) {
   return out;
 }
 
+nlohmann::json sizing_json(const DirectSizing& z, std::size_t tets) {
+  if (z.target_tets == 0) return nullptr;
+  nlohmann::json attempts = nlohmann::json::array();
+  for (const auto& a : z.attempts)
+    attempts.push_back({{"largest_edge_mm", a.global_edge_mm}, {"predicted_tets", a.predicted_tets},
+                        {"refined_tets", a.refined_tets}});
+  nlohmann::json coarsened = nlohmann::json::array();
+  for (const auto& c : z.coarsened) coarsened.push_back({{"tissue", c.tissue}, {"thin_volume_mm3", c.thin_volume_mm3}});
+  return {{"target_tets", z.target_tets},
+          {"tets", tets},
+          {"off_target_percent", 100.0 * (static_cast<double>(tets) / static_cast<double>(z.target_tets) - 1.0)},
+          {"smallest_edge_mm", z.min_edge_mm},
+          {"largest_edge_mm", z.global_edge_mm},
+          {"tet_volume_factor", z.tet_volume_factor},
+          {"thin_parts_coarsened_by", z.thickness_scale},
+          {"tissues_thinner_than_their_elements", coarsened},
+          {"refinements", attempts}};
+}
+
+std::string sizing_text(const DirectSizing& z, std::size_t tets) {
+  if (z.target_tets == 0) return "";
+  std::ostringstream s;
+  s << "sizes from the image: " << tets << " tets for a budget of " << z.target_tets
+    << fmt(" (%+.1f %%); edges ", 100.0 * (static_cast<double>(tets) / static_cast<double>(z.target_tets) - 1.0))
+    << fmt("%.2f to ", z.min_edge_mm) << fmt("%.2f mm, ", z.global_edge_mm) << z.attempts.size() << " refinement(s)\n";
+  if (z.thickness_scale > 1.0)
+    s << fmt("  at this budget thin parts get elements %.2f times their local thickness x thickness_edge_ratio:\n",
+             z.thickness_scale);
+  for (const auto& c : z.coarsened)
+    s << "  " << c.tissue << fmt(": %.1f mm^3 thinner than its elements\n", c.thin_volume_mm3);
+  return s.str();
+}
+
 }  // namespace
 
 nlohmann::json mesh_job_json(const MeshJobResult& r) {
@@ -202,6 +235,7 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
     by_tissue.push_back({{"tissue", tissue}, {"components", nv.first}, {"volume_mm3", nv.second}});
   j["components_not_meshed_by_tissue"] = by_tissue;
   add_sliver_repair_json(j, r.meshing.repair, r.meshing.mesh.tissue_names);
+  j["sizes_from_image"] = sizing_json(r.meshing.sizing, mesh.tets.size());
   return j;
 }
 
@@ -213,6 +247,7 @@ std::string mesh_job_text(const MeshJobResult& r) {
   s << format_conformity_table(r.conformity, mesh.tissue_names) << "\n";
   s << "image components (6-connected, all tissues): " << r.meshing.image_components << "\n";
   if (r.meshing.absorbed.min_voxels > 1) s << islands_text(r.meshing.absorbed, mesh.tissue_names);
+  s << sizing_text(r.meshing.sizing, mesh.tets.size());
   s << "components meshed: " << r.meshing.meshed_components << " from " << r.meshing.initial_points
     << " initial surface points; not meshed: " << r.meshing.missed.size() << "\n";
   add_missed_text(s, r.meshing.missed);

@@ -30,6 +30,15 @@ DirectMeshParams DirectMeshParams::from_yaml(YamlMap& m) {
     throw InputError(m.where("min_component_voxels") + ": must be in 0..1000000 voxels (0 = off), got " +
                      std::to_string(p.min_component_voxels));
   p.min_component_mm3 = m.in_range("min_component_mm3", p.min_component_mm3, 0.0, 1e6);
+  const long long target = m.integer("target_tets", 0);
+  if (target < 0 || target > 200000000)
+    throw InputError(m.where("target_tets") + ": must be in 0..200000000 tets (0 = fixed sizes), got " +
+                     std::to_string(target));
+  p.target_tets = static_cast<std::size_t>(target);
+  p.thickness_edge_ratio = m.in_range("thickness_edge_ratio", p.thickness_edge_ratio, 0.1, 10.0);
+  p.size_growth = m.in_range("size_growth", p.size_growth, 0.05, 10.0);
+  p.facet_distance_ratio = m.in_range("facet_distance_ratio", p.facet_distance_ratio, 0.001, 1.0);
+  p.min_edge_mm = m.in_range("min_edge_mm", p.min_edge_mm, 0.0, 1e3);
   p.optimise.read(m);
   m.finish();
   return p;
@@ -59,6 +68,11 @@ void DirectMeshParams::to_yaml(YAML::Emitter& out) const {
   out << YAML::Key << "smoothing_sigma_mm" << YAML::Value << smoothing_sigma_mm;
   out << YAML::Key << "min_component_voxels" << YAML::Value << min_component_voxels;
   out << YAML::Key << "min_component_mm3" << YAML::Value << min_component_mm3;
+  out << YAML::Key << "target_tets" << YAML::Value << target_tets;
+  out << YAML::Key << "thickness_edge_ratio" << YAML::Value << thickness_edge_ratio;
+  out << YAML::Key << "size_growth" << YAML::Value << size_growth;
+  out << YAML::Key << "facet_distance_ratio" << YAML::Value << facet_distance_ratio;
+  out << YAML::Key << "min_edge_mm" << YAML::Value << min_edge_mm;
   optimise.emit(out);
   out << YAML::EndMap;
 }

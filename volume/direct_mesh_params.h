@@ -44,6 +44,17 @@ struct DirectMeshParams {
   int min_component_voxels = 0;         ///< fewer voxels than this: absorbed (0 = off)
   double min_component_mm3 = 0.25;      ///< smaller volume than this, mm^3: absorbed (0 = off)
 
+  /// Element budget: > 0 derives the sizes from the image (each tissue's local thickness, graded
+  /// away from thin parts, docs/direct-pipeline.md "Sizes from the image") so that the mesh has
+  /// about this many tets; facet_size_mm, cell_size_mm, cell_size_per_tissue_mm and refine_* are
+  /// then upper bounds. 0 = the fixed sizes above.
+  std::size_t target_tets = 0;
+  double thickness_edge_ratio = 1.0;    ///< with target_tets: edge length / local thickness
+  double size_growth = 0.3;             ///< with target_tets: edge growth per mm away from thin parts
+  /// with target_tets: facet distance / local edge (facet_distance_mm is then an upper bound)
+  double facet_distance_ratio = 0.05;
+  double min_edge_mm = 0.0;             ///< with target_tets: smallest edge, mm; 0 = smallest voxel spacing
+
   Mesh3Optimisation optimise;           ///< optimisation and sliver repair (mesh3_optimisation.h)
 
   /// Reads the `direct:` map (unknown keys are errors; values range-checked with the key named).

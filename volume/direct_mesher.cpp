@@ -12,6 +12,8 @@
 #include "core/errors.h"
 #include "core/face_key.h"
 #include "image/label_components.h"
+#include "image/local_thickness.h"
+#include "volume/image_sizing.h"
 #include "volume/label_weights.h"
 #include "volume/mesh3_steps.h"
 
@@ -80,12 +82,16 @@ struct SizeField {
   double ball_radius = 0.0, refine_size = 1.0, refine_radius = 1.0;
 
   FT operator()(const Point_3& p, const int dim, const Index& index) const {
+    int tissue = 0;
+    if (dim == 3)
+      if (const auto* sub = boost::get<Domain::Subdomain_index>(&index)) tissue = *sub;
+    return at(p, tissue);
+  }
+
+  /// The size at `p` in `tissue` (0: on a boundary, the base size).
+  double at(const Point_3& p, int tissue) const {
     double size = base;
-    if (dim == 3) {
-      if (const auto* sub = boost::get<Domain::Subdomain_index>(&index)) {
-        if (*sub > 0 && static_cast<std::size_t>(*sub) < per_tissue.size()) size = per_tissue[*sub];
-      }
-    }
+    if (tissue > 0 && static_cast<std::size_t>(tissue) < per_tissue.size()) size = per_tissue[tissue];
     if (refine) {
       const double d = std::max(0.0, std::sqrt(CGAL::squared_distance(p, centre)) - ball_radius);
       size = std::min(size, refine_size + (size - refine_size) * std::min(1.0, d / refine_radius));
@@ -93,6 +99,34 @@ struct SizeField {
     return size;
   }
 };
+
+// The edge field of ImageSizing as a CGAL size: `factor` converts an edge length to the radius CGAL
+// bounds (0.577 for a facet's Delaunay ball, 0.612 for a tet's circumsphere: the equilateral
+// triangle and the regular tet of that edge), capped by the fixed field.
+struct GridSizeField {
+  typedef K::FT FT;
+  typedef K::Point_3 Point_3;
+  typedef Domain::Index Index;
+
+  const ImageSizing* sizing = nullptr;
+  double factor = 0.612;
+  const SizeField* fixed = nullptr;
+
+  FT operator()(const Point_3& p, const int dim, const Index& index) const {
+    return std::min(factor * sizing->edge_at(p.x(), p.y(), p.z()), (*fixed)(p, dim, index));
+  }
+};
+
+// The budget loop: refinement stops when the count is this close to target_tets (the optimisers
+// and repairs after it change the count by well under 1 %), or after this many refinements.
+constexpr double kBudgetSlack = 0.05;
+constexpr int kBudgetAttempts = 4;
+// A count further than this from target_tets is a budget this image cannot meet (InputError).
+constexpr double kBudgetTolerance = 0.10;
+
+// Edge / radius conversions of GridSizeField.
+constexpr double kFacetRadiusPerEdge = 0.5773502691896258;  // 1 / sqrt(3)
+constexpr double kCellRadiusPerEdge = 0.6123724356957945;   // sqrt(6) / 4
 
 Point voxel_point(const std::array<int, 3>& ijk, const Eigen::Vector3d& spacing) {
   return Point(ijk[0] * spacing[0], ijk[1] * spacing[1], ijk[2] * spacing[2]);
@@ -259,10 +293,19 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
   }
   domain_stage.reset();
 
+  // With a budget the base sizes are the budget's to choose, up to a quarter of the size of the
+  // body (a cube of the tissues' volume): the fixed facet and cell sizes would put a floor under
+  // the count that a small budget cannot go below.
+  double budget_max_edge = 0.0;
+  if (params.target_tets > 0) {
+    std::size_t tissue_voxels = 0;
+    for (std::int32_t v : ids.labels) tissue_voxels += v != 0;
+    budget_max_edge = 0.25 * std::cbrt(static_cast<double>(tissue_voxels) * ids.voxel_volume());
+  }
   SizeField facet_field, cell_field;
-  facet_field.base = params.facet_size_mm;
-  cell_field.base = params.cell_size_mm;
-  cell_field.per_tissue.assign(names.size() + 1, params.cell_size_mm);
+  facet_field.base = params.target_tets > 0 ? kFacetRadiusPerEdge * budget_max_edge : params.facet_size_mm;
+  cell_field.base = params.target_tets > 0 ? kCellRadiusPerEdge * budget_max_edge : params.cell_size_mm;
+  cell_field.per_tissue.assign(names.size() + 1, cell_field.base);
   for (const auto& [name, size] : params.cell_size_per_tissue_mm)
     cell_field.per_tissue[tissue_id(name, "cell_size_per_tissue_mm")] = size;
   if (!params.refine_tissue.empty()) {
@@ -292,31 +335,138 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
       }
     }
   }
-  Criteria criteria(p::edge_size = facet_field, p::facet_angle = params.facet_angle_deg, p::facet_size = facet_field,
-                    p::facet_distance = params.facet_distance_mm,
-                    p::cell_radius_edge_ratio = params.cell_radius_edge_ratio, p::cell_size = cell_field);
-
-  C3t3 c3t3;
-  {
-    auto stage = progress.stage("protect border features");
-    CGAL::Mesh_3::internal::init_c3t3_with_features(c3t3, domain, criteria);
-    stage.note(std::to_string(c3t3.triangulation().number_of_vertices()) + " protecting balls");
-  }
-  {
-    auto stage = progress.stage("seed components");
-    result.initial_points = seed_components(c3t3, domain, ids, comps, params.facet_size_mm);
-    stage.note(std::to_string(result.initial_points) + " initial surface points");
-  }
   // Thin tissue and small components need a boundary tolerance below the voxel size; a coarser
   // one loses their volume (named per tissue by the volume checks, but the cause is here).
-  if (params.facet_distance_mm > ids.spacing.minCoeff()) {
+  if (params.target_tets == 0 && params.facet_distance_mm > ids.spacing.minCoeff()) {
     std::ostringstream w;
     w << "direct.facet_distance_mm (" << params.facet_distance_mm << " mm) is larger than the smallest voxel spacing ("
       << ids.spacing.minCoeff() << " mm): thin tissue and small components lose volume; about half a voxel "
       << "resolves them";
     result.warnings.push_back(w.str());
   }
-  mesh3::refine(c3t3, domain, criteria, progress);
+
+  C3t3 c3t3;
+  auto build = [&](const auto& criteria) {
+    c3t3.clear();
+    {
+      auto stage = progress.stage("protect border features");
+      CGAL::Mesh_3::internal::init_c3t3_with_features(c3t3, domain, criteria);
+      stage.note(std::to_string(c3t3.triangulation().number_of_vertices()) + " protecting balls");
+    }
+    {
+      auto stage = progress.stage("seed components");
+      result.initial_points = seed_components(c3t3, domain, ids, comps, params.facet_size_mm);
+      stage.note(std::to_string(result.initial_points) + " initial surface points");
+    }
+    mesh3::refine(c3t3, domain, criteria, progress);
+  };
+
+  if (params.target_tets == 0) {
+    build(Criteria(p::edge_size = facet_field, p::facet_angle = params.facet_angle_deg, p::facet_size = facet_field,
+                   p::facet_distance = params.facet_distance_mm,
+                   p::cell_radius_edge_ratio = params.cell_radius_edge_ratio, p::cell_size = cell_field));
+  } else {
+    ImageSizing sizing;
+    ImageSizingParams sp;
+    sp.target_tets = params.target_tets;
+    sp.thickness_edge_ratio = params.thickness_edge_ratio;
+    sp.growth = params.size_growth;
+    sp.min_edge_mm = params.min_edge_mm > 0 ? params.min_edge_mm : ids.spacing.minCoeff();
+    sp.max_edge_mm = std::max(sp.min_edge_mm, budget_max_edge);
+    SizeField distance_cap;  // no cap: the distance follows the edge
+    distance_cap.base = budget_max_edge;
+    std::vector<float> thickness;
+    {
+      auto stage = progress.stage("local thickness");
+      // Thickness matters only where it asks for edges below what the budget can spend: up to three
+      // times the edge of a uniform mesh of the budget (the painted balls then stay small).
+      std::size_t tissue_voxels = 0;
+      for (std::int32_t v : ids.labels) tissue_voxels += v != 0;
+      const double uniform_edge = std::cbrt(static_cast<double>(tissue_voxels) * ids.voxel_volume() /
+                                            (sp.tet_volume_factor * static_cast<double>(params.target_tets)));
+      thickness = local_thickness(ids, std::min(sp.max_edge_mm, 3.0 * uniform_edge) / sp.thickness_edge_ratio);
+    }
+    auto cap = [&](int i, int j, int k) {
+      const Point q = voxel_point({i, j, k}, ids.spacing);
+      return cell_field.at(q, ids.at(i, j, k)) / kCellRadiusPerEdge;
+    };
+    result.sizing.target_tets = params.target_tets;
+    // Size, refine, compare the count with the budget, correct the tet volume factor, and again.
+    std::vector<double> raws;
+    for (int attempt = 0;; ++attempt) {
+      {
+        auto stage = progress.stage("sizes from the image");
+        sizing = size_from_image(ids, thickness, cap, names, sp);
+        std::ostringstream note;
+        note << "edges " << sizing.min_edge_mm << " to " << sizing.global_edge_mm << " mm for about "
+             << std::lround(sizing.predicted_tets) << " tets";
+        if (sizing.thickness_scale > 1.0) note << "; thin parts coarsened x" << sizing.thickness_scale;
+        stage.note(note.str());
+      }
+      GridSizeField facet_grid{&sizing, kFacetRadiusPerEdge, &facet_field};
+      GridSizeField cell_grid{&sizing, kCellRadiusPerEdge, &cell_field};
+      GridSizeField edge_grid{&sizing, 1.0, &facet_field};
+      GridSizeField distance_grid{&sizing, params.facet_distance_ratio, &distance_cap};
+      build(Criteria(p::edge_size = edge_grid, p::facet_angle = params.facet_angle_deg, p::facet_size = facet_grid,
+                     p::facet_distance = distance_grid,
+                     p::cell_radius_edge_ratio = params.cell_radius_edge_ratio, p::cell_size = cell_grid));
+      const double tets = static_cast<double>(c3t3.number_of_cells_in_complex());
+      // raw = the sum of voxel volume / edge^3, what the count should be proportional to.
+      const double raw = sizing.predicted_tets * sp.tet_volume_factor;
+      result.sizing.attempts.push_back({sizing.global_edge_mm, sizing.predicted_tets, static_cast<std::size_t>(tets)});
+      raws.push_back(raw);
+      const double target = static_cast<double>(params.target_tets);
+      const double off = tets / target;
+      if (std::abs(off - 1.0) <= kBudgetSlack || attempt + 1 >= kBudgetAttempts || tets == 0) break;
+      if (off < 1.0 && sizing.global_edge_mm <= sizing.min_edge_mm * 1.0001) break;  // finest edges everywhere
+      // The count follows the raw sum as a power law near the budget: one refinement gives its
+      // level (exponent 1), two give the exponent too. Where the count hardly follows the sizes
+      // (exponent under 0.1), small components and thin parts hold it up: the budget is below
+      // what the image needs, about a = N - b raw on the line through the last two.
+      double next_raw = raw / off;
+      if (raws.size() >= 2) {
+        const auto& prev = result.sizing.attempts[result.sizing.attempts.size() - 2];
+        const double r0 = raws[raws.size() - 2], n0 = static_cast<double>(prev.refined_tets);
+        if (std::abs(std::log(raw / r0)) > 1e-6 && n0 > 0) {
+          const double exponent = std::log(tets / n0) / std::log(raw / r0);
+          if (exponent < 0.1 && off > 1.0) {
+            const double b = (tets - n0) / (raw - r0);
+            result.sizing.floor_tets = static_cast<std::size_t>(std::max(tets - std::max(b, 0.0) * raw, 0.0));
+            break;
+          }
+          if (exponent >= 0.1) next_raw = raw * std::pow(target / tets, 1.0 / exponent);
+        }
+      }
+      sp.tet_volume_factor = next_raw / target;
+    }
+    {
+      const auto& last = result.sizing.attempts.back();
+      const double target = static_cast<double>(params.target_tets);
+      const double off = static_cast<double>(last.refined_tets) / target - 1.0;
+      if (std::abs(off) > kBudgetTolerance) {
+        std::ostringstream e;
+        e << "direct.target_tets: a budget of " << params.target_tets << " tets cannot be met on this image; the "
+          << "refinements gave";
+        for (const auto& a : result.sizing.attempts) e << " " << a.refined_tets;
+        e << " tets";
+        if (off > 0) {
+          const std::size_t need = std::max<std::size_t>(result.sizing.floor_tets, last.refined_tets);
+          e << ". Its " << comps.components.size() << " tissue components and thin parts need about " << need
+            << " tets at any size: raise direct.target_tets to at least " << (need + need / 10)
+            << ", or let more small components join their surroundings (direct.min_component_mm3)";
+        } else {
+          e << ", the most this image gives at the smallest edge (" << sizing.min_edge_mm
+            << " mm): lower direct.target_tets to at most " << last.refined_tets << " or direct.min_edge_mm";
+        }
+        throw InputError(e.str());
+      }
+    }
+    result.sizing.min_edge_mm = sizing.min_edge_mm;
+    result.sizing.thickness_scale = sizing.thickness_scale;
+    result.sizing.coarsened = sizing.coarsened;
+    result.sizing.tet_volume_factor = sp.tet_volume_factor;
+    result.sizing.global_edge_mm = sizing.global_edge_mm;
+  }
   mesh3::optimise(c3t3, domain, params.optimise, progress, result.warnings);
 
   auto stage = progress.stage("extract mesh");

@@ -8,7 +8,8 @@
 // surface points, so that no island is skipped (one start voxel per facet_size_mm cube of its
 // volume, at least one and at most nine, six axis rays from each: at most 54 points per component
 // and 6 per small one); Delaunay refinement with the criteria of DirectMeshParams and a size
-// field that is finer around `refine_tissue`; then optional Lloyd/ODT, sliver
+// field that is finer around `refine_tissue`, or, with a tet budget, sizes from each tissue's local
+// thickness scaled to meet the budget (image_sizing.h); then optional Lloyd/ODT, sliver
 // perturbation/exudation and the sliver repairs of Mesh3Optimisation. All tets of the result are
 // positively oriented in physical LPS millimetres, even when the image direction matrix is a
 // reflection. Deterministic: the same image and parameters give the same mesh.
@@ -19,6 +20,7 @@
 #include "core/tet_mesh.h"
 #include "image/small_islands.h"
 #include "volume/direct_mesh_params.h"
+#include "volume/image_sizing.h"
 #include "volume/mesh3_optimisation.h"
 
 #include <Eigen/Core>
@@ -36,6 +38,25 @@ struct MissedComponent {
   Eigen::Vector3d centroid_mm{0, 0, 0};  ///< LPS
 };
 
+/// How the sizes met `direct.target_tets` (empty when it is 0).
+struct DirectSizing {
+  struct Attempt {
+    double global_edge_mm = 0.0;  ///< the largest edge of the size field, mm
+    double predicted_tets = 0.0;
+    std::size_t refined_tets = 0;  ///< tets after Delaunay refinement
+  };
+  std::size_t target_tets = 0;
+  double min_edge_mm = 0.0;
+  double global_edge_mm = 0.0;    ///< of the refinement kept
+  double tet_volume_factor = 0.0; ///< mean tet volume / edge^3 of the last prediction
+  double thickness_scale = 1.0;   ///< > 1: thin parts got elements this much coarser than their thickness
+  std::vector<CoarsenedTissue> coarsened;
+  std::vector<Attempt> attempts;
+  /// > 0 when the refinements showed the budget is below what this image needs at any size: about
+  /// this many tets (small components, thin parts and the quality criteria) whatever the edges.
+  std::size_t floor_tets = 0;
+};
+
 struct DirectMeshResult {
   TetMesh mesh;
   std::size_t image_components = 0;      ///< 6-connected components over all tissues of the input
@@ -45,13 +66,17 @@ struct DirectMeshResult {
   std::size_t initial_points = 0;        ///< surface points seeded before refinement
   std::vector<MissedComponent> missed;   ///< kept components not represented (reported, never hidden)
   SliverRepair repair;                   ///< what the sliver repairs did
+  DirectSizing sizing;                   ///< with direct.target_tets: sizes and counts
   /// Things the user must know, e.g. an optimiser stopped by its time limit (its result then
   /// depends on machine speed, so repeated runs may differ).
   std::vector<std::string> warnings;
 };
 
 /// `ids`: tissue ids 0..N (0 = outside) as made by TissueTable::to_tissue_ids; `tissue_names[i]`
-/// names id i+1. Throws InputError if a name in params (cell_size_per_tissue_mm, refine_tissue)
+/// names id i+1. With params.target_tets > 0 the sizes come from the image (image_sizing.h) and
+/// refinement is repeated (at most four times) until the count is within 5 % of the budget; a
+/// count still more than 10 % off throws InputError naming the counts reached and the budget this
+/// image can meet. Throws InputError if a name in params (cell_size_per_tissue_mm, refine_tissue)
 /// is not a tissue, MeshingError if CGAL yields no tets.
 DirectMeshResult mesh_labels_direct(const LabelImage& ids, const std::vector<std::string>& tissue_names,
                                     const DirectMeshParams& params, Progress& progress);
