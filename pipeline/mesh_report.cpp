@@ -236,6 +236,9 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
   j["components_not_meshed_by_tissue"] = by_tissue;
   add_sliver_repair_json(j, r.meshing.repair, r.meshing.mesh.tissue_names);
   j["sizes_from_image"] = sizing_json(r.meshing.sizing, mesh.tets.size());
+  const ComponentVolumeFit& f = r.meshing.island_fit;
+  j["island_volume_fit"] = {{"fitted", f.fitted}, {"not_enclosed", f.not_enclosed}, {"blocked", f.blocked},
+                            {"volume_moved_mm3", f.volume_moved_mm3}};
   return j;
 }
 
@@ -252,6 +255,11 @@ std::string mesh_job_text(const MeshJobResult& r) {
     << " initial surface points; not meshed: " << r.meshing.missed.size() << "\n";
   add_missed_text(s, r.meshing.missed);
   s << sliver_repair_text(r.meshing.repair);
+  const ComponentVolumeFit& f = r.meshing.island_fit;
+  if (f.fitted + f.blocked + f.not_enclosed > 0)
+    s << "small components scaled to their voxel volume: " << f.fitted << fmt(" (%.2f mm^3 moved); ", f.volume_moved_mm3)
+      << f.blocked << " left as meshed (a tet would have gone below its angle), " << f.not_enclosed
+      << " not enclosed by one tissue\n";
   for (const auto& w : r.meshing.warnings) s << "WARNING: " << w << "\n";
   return s.str();
 }

@@ -55,6 +55,11 @@ struct DirectMeshParams {
   double facet_distance_ratio = 0.05;
   double min_edge_mm = 0.0;             ///< with target_tets: smallest edge, mm; 0 = smallest voxel spacing
 
+  /// Enclosed components of at most this voxel volume (mm^3) are scaled to it after meshing
+  /// (component_volume_fit.h): a blob a few elements across is otherwise meshed tens of percent
+  /// too small. 0 = off.
+  double fit_island_volumes_below_mm3 = 100.0;
+
   Mesh3Optimisation optimise;           ///< optimisation and sliver repair (mesh3_optimisation.h)
 
   /// Reads the `direct:` map (unknown keys are errors; values range-checked with the key named).

@@ -13,6 +13,7 @@
 #include "core/face_key.h"
 #include "image/label_components.h"
 #include "image/local_thickness.h"
+#include "volume/component_volume_fit.h"
 #include "volume/image_sizing.h"
 #include "volume/label_weights.h"
 #include "volume/mesh3_steps.h"
@@ -123,6 +124,11 @@ constexpr double kBudgetSlack = 0.05;
 constexpr int kBudgetAttempts = 4;
 // A count further than this from target_tets is a budget this image cannot meet (InputError).
 constexpr double kBudgetTolerance = 0.10;
+
+// The island volume fit scales a component by at most this factor, and never leaves a tet it moves
+// below this dihedral angle (or below its angle before, if that was smaller).
+constexpr double kIslandMaxScale = 1.25;
+constexpr double kIslandMinDihedralDeg = 10.0;
 
 // Edge / radius conversions of GridSizeField.
 constexpr double kFacetRadiusPerEdge = 0.5773502691896258;  // 1 / sqrt(3)
@@ -482,6 +488,7 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
   // smooth, the voxels are not), the nearest voxel of its own tissue among the 26 neighbours.
   // The rest is reported by name, size and place.
   std::vector<char> covered(comps.components.size(), 0);
+  std::vector<std::int32_t> tet_component(mesh.tets.size(), -1);
   const Eigen::Matrix3d to_index = ids.index_to_physical().inverse();
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -504,6 +511,14 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
           }
         }
     if (best_comp >= 0) covered[best_comp] = 1;
+    tet_component[t] = best_comp;
+  }
+  if (params.fit_island_volumes_below_mm3 > 0) {
+    std::vector<ComponentTarget> targets(comps.components.size());
+    for (std::size_t c = 0; c < targets.size(); ++c)
+      targets[c] = {comps.components[c].tissue_id, static_cast<double>(comps.components[c].voxels) * ids.voxel_volume()};
+    result.island_fit = fit_component_volumes(mesh, tet_component, targets, params.fit_island_volumes_below_mm3,
+                                              kIslandMaxScale, kIslandMinDihedralDeg);
   }
   for (std::size_t c = 0; c < comps.components.size(); ++c) {
     if (covered[c]) continue;

@@ -10,7 +10,8 @@
 // and 6 per small one); Delaunay refinement with the criteria of DirectMeshParams and a size
 // field that is finer around `refine_tissue`, or, with a tet budget, sizes from each tissue's local
 // thickness scaled to meet the budget (image_sizing.h); then optional Lloyd/ODT, sliver
-// perturbation/exudation and the sliver repairs of Mesh3Optimisation. All tets of the result are
+// perturbation/exudation and the sliver repairs of Mesh3Optimisation; then small enclosed
+// components are scaled to their voxel volume (component_volume_fit.h). All tets of the result are
 // positively oriented in physical LPS millimetres, even when the image direction matrix is a
 // reflection. Deterministic: the same image and parameters give the same mesh.
 #pragma once
@@ -19,6 +20,7 @@
 #include "core/progress.h"
 #include "core/tet_mesh.h"
 #include "image/small_islands.h"
+#include "volume/component_volume_fit.h"
 #include "volume/direct_mesh_params.h"
 #include "volume/image_sizing.h"
 #include "volume/mesh3_optimisation.h"
@@ -67,6 +69,7 @@ struct DirectMeshResult {
   std::vector<MissedComponent> missed;   ///< kept components not represented (reported, never hidden)
   SliverRepair repair;                   ///< what the sliver repairs did
   DirectSizing sizing;                   ///< with direct.target_tets: sizes and counts
+  ComponentVolumeFit island_fit;         ///< small enclosed components scaled to their voxel volume
   /// Things the user must know, e.g. an optimiser stopped by its time limit (its result then
   /// depends on machine speed, so repeated runs may differ).
   std::vector<std::string> warnings;

@@ -32,7 +32,7 @@ struct ImageSizingParams {
   double growth = 0.3;                ///< mm of edge per mm of distance (grading)
   double min_edge_mm = 0.0;           ///< smallest edge, mm (> 0)
   double max_edge_mm = 0.0;           ///< largest edge, mm (>= min_edge_mm)
-  double tet_volume_factor = 0.035;   ///< mean tet volume / edge^3 (> 0)
+  double tet_volume_factor = 0.015;   ///< mean tet volume / edge^3 (> 0)
 };
 
 /// A tissue whose thin parts get elements coarser than `thickness_edge_ratio` times their thickness.
