@@ -456,9 +456,10 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
         for (const auto& a : result.sizing.attempts) e << " " << a.refined_tets;
         e << " tets";
         if (off > 0) {
-          const std::size_t need = std::max<std::size_t>(result.sizing.floor_tets, last.refined_tets);
-          e << ". Its " << comps.components.size() << " tissue components and thin parts need about " << need
-            << " tets at any size: raise direct.target_tets to at least " << (need + need / 10)
+          std::size_t need = last.refined_tets;
+          for (const auto& a : result.sizing.attempts) need = std::min(need, a.refined_tets);
+          e << ". Its " << comps.components.size() << " tissue components and thin parts hold the count up (the "
+            << "closest was " << need << "): raise direct.target_tets to at least " << (need + need / 10)
             << ", or let more small components join their surroundings (direct.min_component_mm3)";
         } else {
           e << ", the most this image gives at the smallest edge (" << sizing.min_edge_mm
