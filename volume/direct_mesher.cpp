@@ -425,6 +425,7 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
       const double off = tets / target;
       if (std::abs(off - 1.0) <= kBudgetSlack || attempt + 1 >= kBudgetAttempts || tets == 0) break;
       if (off < 1.0 && sizing.global_edge_mm <= sizing.min_edge_mm * 1.0001) break;  // finest edges everywhere
+      if (raws.size() >= 2 && std::abs(raw / raws[raws.size() - 2] - 1.0) < 1e-9) break;  // the sizes are at their limits
       // The count follows the raw sum as a power law near the budget: one refinement gives its
       // level (exponent 1), two give the exponent too. Where the count hardly follows the sizes
       // (exponent under 0.1), small components and thin parts hold it up: the budget is below
