@@ -108,7 +108,7 @@ std::string sliver_repair_text(const SliverRepair& repair) {
   const SliverSmoothingResult& m = repair.sliver_smoothing;
   s << "sliver smoothing: " << m.moved_vertices
     << " vertex moves (inside a tissue or within a flat or nearly flat boundary or interface";
-  if (m.moved_on_surface > 0) s << "; " << m.moved_on_surface << " of them over a curved one, on the input surface";
+  if (m.moved_on_surface > 0) s << "; " << m.moved_on_surface << " of them over a curved one, kept on the input's boundaries and interfaces";
   s << ") in " << m.passes << " passes\n";
   const BoundaryPinchRepair& p = repair.boundary_pinches;
   if (p.edges_found > 0)

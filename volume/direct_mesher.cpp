@@ -231,6 +231,45 @@ std::size_t seed_components(C3t3& c3t3, const Domain& domain, const LabelImage& 
   return inserted;
 }
 
+// Moves x (CGAL frame, mm) onto the labelled interface between tissues p and q near it, as the
+// sliver smoothing asks (volume/sliver_smoothing.h): along the 26 directions of a voxel stencil,
+// within 1.5 voxels, the segments from x whose far end has the other tissue are cut by the same
+// intersection oracle that placed the mesh's surface vertices; the nearest cut wins. False when x
+// is in neither tissue or no such interface is that close.
+bool onto_label_interface(const Domain& domain, const Eigen::Vector3d& spacing, int p, int q, Point& x) {
+  const auto label = [&](const Point& y) {
+    const auto in = domain.is_in_domain_object()(y);
+    return in ? static_cast<int>(*in) : 0;
+  };
+  const int here = label(x);
+  if (here != p && here != q) return false;
+  const int other = here == p ? q : p;
+  const double reach = 1.5 * spacing.maxCoeff();
+  auto construct_intersection = domain.construct_intersection_object();
+  double best = 1e300;
+  Point found = x;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0 && dz == 0) continue;
+        const double len = std::sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
+        const Point end(x.x() + reach * dx / len, x.y() + reach * dy / len, x.z() + reach * dz / len);
+        if (label(end) != other) continue;
+        const auto hit = construct_intersection(K::Segment_3(x, end));
+        if (std::get<2>(hit) == 0) continue;
+        const auto* patch = boost::get<Domain::Surface_patch_index>(&std::get<1>(hit));
+        if (patch == nullptr || std::minmax(patch->first, patch->second) != std::minmax(p, q)) continue;
+        const double d = CGAL::squared_distance(x, std::get<0>(hit));
+        if (d < best) {
+          best = d;
+          found = std::get<0>(hit);
+        }
+      }
+  if (best == 1e300) return false;
+  x = found;
+  return true;
+}
+
 }  // namespace
 
 std::string cgal_version() { return CGAL_STR(CGAL_VERSION); }
@@ -483,7 +522,16 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
       c3t3, [&](double x, double y, double z) -> Eigen::Vector3d { return ids.origin + D * Eigen::Vector3d(x, y, z); },
       D.determinant() < 0, names);
   TetMesh& mesh = result.mesh;
-  result.repair = repair_slivers(mesh, params.optimise, result.warnings);
+  // The sliver smoothing may slide vertices of curved interfaces and boundaries over the labelled
+  // image's own interfaces (physical LPS <-> CGAL frame: x = origin + D c, c = D^T (x - origin)).
+  const SurfaceProjector onto_labels = [&](int p, int q, Eigen::Vector3d& x) {
+    const Eigen::Vector3d c = D.transpose() * (x - ids.origin);
+    Point y(c[0], c[1], c[2]);
+    if (!onto_label_interface(domain, ids.spacing, p, q, y)) return false;
+    x = ids.origin + D * Eigen::Vector3d(y.x(), y.y(), y.z());
+    return true;
+  };
+  result.repair = repair_slivers(mesh, params.optimise, result.warnings, onto_labels);
 
   // Which image components are covered by tets of their tissue? A tet credits the component of
   // the voxel under its centroid or, when that voxel has another tissue (the mesh boundary is

@@ -91,10 +91,11 @@ TEST(Demo, PhantomMeshIsConformingWithFaithfulVolumes) {
     EXPECT_LT(std::abs(t["volume_error_rel"].get<double>()), bound) << name;
   }
   EXPECT_TRUE(result["components_not_meshed"].empty()) << result["components_not_meshed"].dump();
-  // Acceptance: minimum dihedral >= 5 degrees and under 0.1% of tets below 10 degrees.
+  // Every tet at 10 degrees or more: the sliver smoothing slides the vertices of slivers on curved
+  // interfaces over the image's interfaces (without it the phantom keeps five, down to 6.9).
   const auto& total = result["quality"]["total"];
-  EXPECT_GE(total["min_dihedral_deg"].get<double>(), 5.0);
-  EXPECT_LT(total["tets_below_10deg"].get<double>() / total["tets"].get<double>(), 0.001);
+  EXPECT_GE(total["min_dihedral_deg"].get<double>(), 10.0);
+  EXPECT_EQ(total["tets_below_10deg"].get<int>(), 0);
 }
 
 TEST(Demo, SameRunSameMesh) {
