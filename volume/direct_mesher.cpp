@@ -13,6 +13,7 @@
 #include "core/face_key.h"
 #include "image/label_components.h"
 #include "image/local_thickness.h"
+#include "volume/budget_refinement.h"
 #include "volume/component_volume_fit.h"
 #include "volume/image_sizing.h"
 #include "volume/label_weights.h"
@@ -118,12 +119,6 @@ struct GridSizeField {
   }
 };
 
-// The budget loop: refinement stops when the count is this close to target_tets (the optimisers
-// and repairs after it change the count by well under 1 %), or after this many refinements.
-constexpr double kBudgetSlack = 0.05;
-constexpr int kBudgetAttempts = 4;
-// A count further than this from target_tets is a budget this image cannot meet (InputError).
-constexpr double kBudgetTolerance = 0.10;
 
 // The island volume fit scales a component by at most this factor, and never leaves a tet it moves
 // below this dihedral angle (or below its angle before, if that was smaller).
@@ -411,7 +406,6 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
                    p::facet_distance = params.facet_distance_mm,
                    p::cell_radius_edge_ratio = params.cell_radius_edge_ratio, p::cell_size = cell_field));
   } else {
-    ImageSizing sizing;
     ImageSizingParams sp;
     sp.target_tets = params.target_tets;
     sp.thickness_edge_ratio = params.thickness_edge_ratio;
@@ -435,84 +429,28 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
       const Point q = voxel_point({i, j, k}, ids.spacing);
       return cell_field.at(q, ids.at(i, j, k)) / kCellRadiusPerEdge;
     };
-    result.sizing.target_tets = params.target_tets;
-    // Size, refine, compare the count with the budget, correct the tet volume factor, and again.
-    std::vector<double> raws;
-    for (int attempt = 0;; ++attempt) {
-      {
-        auto stage = progress.stage("sizes from the image");
-        sizing = size_from_image(ids, thickness, cap, names, sp);
-        std::ostringstream note;
-        note << "edges " << sizing.min_edge_mm << " to " << sizing.global_edge_mm << " mm for about "
-             << std::lround(sizing.predicted_tets) << " tets";
-        if (sizing.thickness_scale > 1.0) note << "; thin parts coarsened x" << sizing.thickness_scale;
-        stage.note(note.str());
-      }
-      GridSizeField facet_grid{&sizing, kFacetRadiusPerEdge, &facet_field};
-      GridSizeField cell_grid{&sizing, kCellRadiusPerEdge, &cell_field};
-      GridSizeField edge_grid{&sizing, 1.0, &facet_field};
-      GridSizeField distance_grid{&sizing, params.facet_distance_ratio, &distance_cap};
-      build(Criteria(p::edge_size = edge_grid, p::facet_angle = params.facet_angle_deg, p::facet_size = facet_grid,
-                     p::facet_distance = distance_grid,
-                     p::cell_radius_edge_ratio = params.cell_radius_edge_ratio, p::cell_size = cell_grid));
-      const double tets = static_cast<double>(c3t3.number_of_cells_in_complex());
-      // raw = the sum of voxel volume / edge^3, what the count should be proportional to.
-      const double raw = sizing.predicted_tets * sp.tet_volume_factor;
-      result.sizing.attempts.push_back({sizing.global_edge_mm, sizing.predicted_tets, static_cast<std::size_t>(tets)});
-      raws.push_back(raw);
-      const double target = static_cast<double>(params.target_tets);
-      const double off = tets / target;
-      if (std::abs(off - 1.0) <= kBudgetSlack || attempt + 1 >= kBudgetAttempts || tets == 0) break;
-      if (off < 1.0 && sizing.global_edge_mm <= sizing.min_edge_mm * 1.0001) break;  // finest edges everywhere
-      if (raws.size() >= 2 && std::abs(raw / raws[raws.size() - 2] - 1.0) < 1e-9) break;  // the sizes are at their limits
-      // The count follows the raw sum as a power law near the budget: one refinement gives its
-      // level (exponent 1), two give the exponent too. Where the count hardly follows the sizes
-      // (exponent under 0.1), small components and thin parts hold it up: the budget is below
-      // what the image needs, about a = N - b raw on the line through the last two.
-      double next_raw = raw / off;
-      if (raws.size() >= 2) {
-        const auto& prev = result.sizing.attempts[result.sizing.attempts.size() - 2];
-        const double r0 = raws[raws.size() - 2], n0 = static_cast<double>(prev.refined_tets);
-        if (std::abs(std::log(raw / r0)) > 1e-6 && n0 > 0) {
-          const double exponent = std::log(tets / n0) / std::log(raw / r0);
-          if (exponent < 0.1 && off > 1.0) {
-            const double b = (tets - n0) / (raw - r0);
-            result.sizing.floor_tets = static_cast<std::size_t>(std::max(tets - std::max(b, 0.0) * raw, 0.0));
-            break;
-          }
-          if (exponent >= 0.1) next_raw = raw * std::pow(target / tets, 1.0 / exponent);
-        }
-      }
-      sp.tet_volume_factor = next_raw / target;
-    }
-    {
-      const auto& last = result.sizing.attempts.back();
-      const double target = static_cast<double>(params.target_tets);
-      const double off = static_cast<double>(last.refined_tets) / target - 1.0;
-      if (std::abs(off) > kBudgetTolerance) {
-        std::ostringstream e;
-        e << "direct.target_tets: a budget of " << params.target_tets << " tets cannot be met on this image; the "
-          << "refinements gave";
-        for (const auto& a : result.sizing.attempts) e << " " << a.refined_tets;
-        e << " tets";
-        if (off > 0) {
-          std::size_t need = last.refined_tets;
-          for (const auto& a : result.sizing.attempts) need = std::min(need, a.refined_tets);
-          e << ". Its " << comps.components.size() << " tissue components and thin parts hold the count up (the "
-            << "closest was " << need << "): raise direct.target_tets to at least " << (need + need / 10)
-            << ", or let more small components join their surroundings (direct.min_component_mm3)";
-        } else {
-          e << ", the most this image gives at the smallest edge (" << sizing.min_edge_mm
-            << " mm): lower direct.target_tets to at most " << last.refined_tets << " or direct.min_edge_mm";
-        }
-        throw InputError(e.str());
-      }
-    }
-    result.sizing.min_edge_mm = sizing.min_edge_mm;
-    result.sizing.thickness_scale = sizing.thickness_scale;
-    result.sizing.coarsened = sizing.coarsened;
-    result.sizing.tet_volume_factor = sp.tet_volume_factor;
-    result.sizing.global_edge_mm = sizing.global_edge_mm;
+    result.sizing = refine_to_budget(
+        sp, comps.components.size(),
+        [&](const ImageSizingParams& round) {
+          auto stage = progress.stage("sizes from the image");
+          ImageSizing z = size_from_image(ids, thickness, cap, names, round);
+          std::ostringstream note;
+          note << "edges " << z.min_edge_mm << " to " << z.global_edge_mm << " mm for about "
+               << std::lround(z.predicted_tets) << " tets";
+          if (z.thickness_scale > 1.0) note << "; thin parts coarsened x" << z.thickness_scale;
+          stage.note(note.str());
+          return z;
+        },
+        [&](const ImageSizing& z) {  // z outlives the refinement, which is all the fields need
+          GridSizeField facet_grid{&z, kFacetRadiusPerEdge, &facet_field};
+          GridSizeField cell_grid{&z, kCellRadiusPerEdge, &cell_field};
+          GridSizeField edge_grid{&z, 1.0, &facet_field};
+          GridSizeField distance_grid{&z, params.facet_distance_ratio, &distance_cap};
+          build(Criteria(p::edge_size = edge_grid, p::facet_angle = params.facet_angle_deg, p::facet_size = facet_grid,
+                         p::facet_distance = distance_grid,
+                         p::cell_radius_edge_ratio = params.cell_radius_edge_ratio, p::cell_size = cell_grid));
+          return static_cast<std::size_t>(c3t3.number_of_cells_in_complex());
+        });
   }
   mesh3::optimise(c3t3, domain, params.optimise, progress, result.warnings);
 

@@ -20,6 +20,7 @@
 #include "core/progress.h"
 #include "core/tet_mesh.h"
 #include "image/small_islands.h"
+#include "volume/budget_refinement.h"
 #include "volume/component_volume_fit.h"
 #include "volume/direct_mesh_params.h"
 #include "volume/image_sizing.h"
@@ -38,25 +39,6 @@ struct MissedComponent {
   std::size_t voxels = 0;
   double volume_mm3 = 0.0;
   Eigen::Vector3d centroid_mm{0, 0, 0};  ///< LPS
-};
-
-/// How the sizes met `direct.target_tets` (empty when it is 0).
-struct DirectSizing {
-  struct Attempt {
-    double global_edge_mm = 0.0;  ///< the largest edge of the size field, mm
-    double predicted_tets = 0.0;
-    std::size_t refined_tets = 0;  ///< tets after Delaunay refinement
-  };
-  std::size_t target_tets = 0;
-  double min_edge_mm = 0.0;
-  double global_edge_mm = 0.0;    ///< of the refinement kept
-  double tet_volume_factor = 0.0; ///< mean tet volume / edge^3 of the last prediction
-  double thickness_scale = 1.0;   ///< > 1: thin parts got elements this much coarser than their thickness
-  std::vector<CoarsenedTissue> coarsened;
-  std::vector<Attempt> attempts;
-  /// > 0 when the refinements showed the budget is below what this image needs at any size: about
-  /// this many tets (small components, thin parts and the quality criteria) whatever the edges.
-  std::size_t floor_tets = 0;
 };
 
 struct DirectMeshResult {
