@@ -91,8 +91,7 @@ std::vector<float> local_thickness(const LabelImage& ids, double cap_mm) {
 
   // Paint the balls of the thin ridge voxels.
   const double h = ids.spacing.minCoeff();
-  std::vector<float> thickness(n, kInf);
-  std::vector<char> painted(n, 0);
+  std::vector<float> thickness(n, 0.0f);  // 0: no thin ridge reaches the voxel (yet)
   for (int k = 0; k < dims[2]; ++k)
     for (int j = 0; j < dims[1]; ++j)
       for (int i = 0; i < dims[0]; ++i) {
@@ -125,10 +124,11 @@ std::vector<float> local_thickness(const LabelImage& ids, double cap_mm) {
               if (dx * dx + dy * dy + dz * dz > radius * radius) continue;
               const std::size_t u = ids.index(x, y, z);
               if (ids.labels[u] != label) continue;
-              if (!painted[u] || thickness[u] < fvalue) thickness[u] = fvalue;
-              painted[u] = 1;
+              thickness[u] = std::max(thickness[u], fvalue);
             }
       }
+  for (float& t : thickness)
+    if (t == 0.0f) t = kInf;
   return thickness;
 }
 

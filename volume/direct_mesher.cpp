@@ -119,7 +119,6 @@ struct GridSizeField {
   }
 };
 
-
 // The island volume fit scales a component by at most this factor, and never leaves a tet it moves
 // below this dihedral angle (or below its angle before, if that was smaller).
 constexpr double kIslandMaxScale = 1.25;
@@ -336,11 +335,12 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
   // With a budget the base sizes are the budget's to choose, up to a quarter of the size of the
   // body (a cube of the tissues' volume): the fixed facet and cell sizes would put a floor under
   // the count that a small budget cannot go below.
-  double budget_max_edge = 0.0;
+  double budget_max_edge = 0.0, tissue_mm3 = 0.0;
   if (params.target_tets > 0) {
     std::size_t tissue_voxels = 0;
     for (std::int32_t v : ids.labels) tissue_voxels += v != 0;
-    budget_max_edge = 0.25 * std::cbrt(static_cast<double>(tissue_voxels) * ids.voxel_volume());
+    tissue_mm3 = static_cast<double>(tissue_voxels) * ids.voxel_volume();
+    budget_max_edge = 0.25 * std::cbrt(tissue_mm3);
   }
   SizeField facet_field, cell_field;
   facet_field.base = params.target_tets > 0 ? kFacetRadiusPerEdge * budget_max_edge : params.facet_size_mm;
@@ -419,10 +419,8 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
       auto stage = progress.stage("local thickness");
       // Thickness matters only where it asks for edges below what the budget can spend: up to three
       // times the edge of a uniform mesh of the budget (the painted balls then stay small).
-      std::size_t tissue_voxels = 0;
-      for (std::int32_t v : ids.labels) tissue_voxels += v != 0;
-      const double uniform_edge = std::cbrt(static_cast<double>(tissue_voxels) * ids.voxel_volume() /
-                                            (sp.tet_volume_factor * static_cast<double>(params.target_tets)));
+      const double uniform_edge =
+          std::cbrt(tissue_mm3 / (sp.tet_volume_factor * static_cast<double>(params.target_tets)));
       thickness = local_thickness(ids, std::min(sp.max_edge_mm, 3.0 * uniform_edge) / sp.thickness_edge_ratio);
     }
     auto cap = [&](int i, int j, int k) {

@@ -4,6 +4,7 @@
 // moved tet goes below 10 degrees (or below its angle before).
 #include "quality/conformity.h"
 #include "quality/mesh_quality.h"
+#include "support/meshable_volume.h"
 #include "volume/direct_mesher.h"
 
 #include <gtest/gtest.h>
@@ -53,17 +54,7 @@ Meshed mesh(double fit_below_mm3) {
   return r;
 }
 
-// Voxel volume minus the half voxels beyond the border voxel centres (fat only touches the border).
-double reference(int id) {
-  const LabelImage img = islands();
-  double v = 0;
-  for (int k = 0; k < 40; ++k)
-    for (int j = 0; j < 40; ++j)
-      for (int i = 0; i < 40; ++i)
-        if (img.at(i, j, k) == id)
-          v += (i == 0 || i == 39 ? 0.5 : 1.0) * (j == 0 || j == 39 ? 0.5 : 1.0) * (k == 0 || k == 39 ? 0.5 : 1.0);
-  return v;
-}
+double reference(int id) { return test::meshable_volume_mm3(islands(), id); }
 
 }  // namespace
 
