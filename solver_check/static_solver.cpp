@@ -14,6 +14,7 @@
 #include <cmath>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
 namespace tissuemesh {
 namespace {
@@ -66,6 +67,14 @@ void check_model(const Model& model, const SolveOptions& options) {
     throw InputError("model '" + model.title +
                      "' has no fixed or sliding node set: it is not held in place and cannot be solved statically");
   if (!std::isfinite(options.gravity_scale)) throw InputError("gravity scale must be finite");
+  if (!options.initial_displacements.empty()) {
+    if (options.initial_displacements.size() != model.nodes.size())
+      throw InputError("initial displacements: " + std::to_string(options.initial_displacements.size()) +
+                       " vectors for a model of " + std::to_string(model.nodes.size()) + " nodes");
+    for (std::size_t v = 0; v < model.nodes.size(); ++v)
+      if (!options.initial_displacements[v].allFinite())
+        throw InputError("initial displacement of node " + std::to_string(v) + " is not finite");
+  }
   const AnalysisSettings& s = model.analysis;
   if (s.load_steps < 1 || s.max_newton_iterations < 1 || !(s.min_step_fraction > 0.0) || s.max_load_steps < 1)
     throw InputError(
@@ -305,6 +314,33 @@ bool newton_increment(Context& ctx, double lambda, const Eigen::VectorXd& guess,
 
 }  // namespace
 
+// The linear solver and what identifies the unknowns it was analysed for.
+struct SolverWorkspace::Impl {
+  std::unique_ptr<SparseSpdSolver> linear;
+  LinearSolverKind kind = LinearSolverKind::Auto;
+  std::vector<int> groups;
+  std::size_t elements = 0;
+  int solves = 0;
+
+  SparseSpdSolver& get(LinearSolverKind k, int threads, std::vector<int> g, std::size_t num_elements) {
+    if (!linear) {
+      kind = k;
+      groups = g;
+      elements = num_elements;
+      linear = std::make_unique<SparseSpdSolver>(k, threads, std::move(g));
+    } else if (k != kind || g != groups || num_elements != elements) {
+      throw std::invalid_argument(
+          "SolverWorkspace: a solve with other unknowns or elements than the first one it served");
+    }
+    ++solves;
+    return *linear;
+  }
+};
+
+SolverWorkspace::SolverWorkspace() : impl(std::make_unique<Impl>()) {}
+SolverWorkspace::~SolverWorkspace() = default;
+int SolverWorkspace::solves() const { return impl->solves; }
+
 std::string formulation_name(const Model& model) {
   if (model.order == ElementOrder::Quadratic) return "tet10";
   return uses_nodal_pressure(model) ? "tet4, average nodal pressure" : "tet4";
@@ -318,7 +354,19 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   const AnalysisSettings& s = model.analysis;
   ReducedAssembly assembly(model.order, model.elements, problem.geometry, problem.law, dofs, options.threads,
                            problem.nodal.get());
-  SparseSpdSolver linear(options.linear_solver, assembly.threads(), dofs.node_groups());
+  std::unique_ptr<SparseSpdSolver> own_linear;
+  SparseSpdSolver& linear =
+      options.workspace
+          ? options.workspace->impl->get(options.linear_solver, assembly.threads(), dofs.node_groups(),
+                                         model.elements.size())
+          : *(own_linear = std::make_unique<SparseSpdSolver>(options.linear_solver, assembly.threads(),
+                                                              dofs.node_groups()));
+  // A shared linear solver counts over all its solves: this solve reports its own share.
+  const int factorisations_before = linear.factorisations(), shifted_before = linear.shifted_factorisations(),
+            failed_before = linear.failed_factorisations(), iterations_before = linear.iterations(),
+            eigen_before = linear.eigenvalue_iterations();
+  const double factorisation_seconds_before = linear.factorisation_seconds(),
+               analysis_seconds_before = linear.analysis_seconds();
   Context ctx{problem, dofs, s, assembly, linear};
 
   SolveResult result;
@@ -336,6 +384,28 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   bool after_cut_back = false;  // the last attempt failed and was halved
   double lambda = 0.0, increment = 1.0 / s.load_steps;
   bool failed = false;
+  if (!options.initial_displacements.empty()) {
+    // The whole load at once from the given start; a failure falls back to the ramp from zero.
+    Eigen::VectorXd u0(problem.f_ext.size());
+    for (std::size_t v = 0; v < model.nodes.size(); ++v) u0.segment<3>(3 * v) = options.initial_displacements[v];
+    const Eigen::VectorXd q0 = dofs.reduce(u0);  // B^T u: the components the constraints allow
+    const auto step_start = Clock::now();
+    StepRecord record;
+    record.load_fraction = 1.0;
+    record.increment = 1.0;
+    State next;
+    const bool ok = newton_increment(ctx, 1.0, q0, q0, next, record);
+    result.total_iterations += record.iterations;
+    record.accepted = ok;
+    record.note = ok ? "from the initial displacement" : "from the initial displacement: " + record.note;
+    record.seconds = seconds_since(step_start);
+    if (options.on_step) options.on_step(record);
+    if (ok) {
+      state = std::move(next);
+      lambda = 1.0;
+    }
+    result.steps.push_back(std::move(record));
+  }
   while (lambda < 1.0) {
     if (static_cast<int>(result.steps.size()) >= s.max_load_steps) {
       result.message = "stopped after " + std::to_string(s.max_load_steps) +
@@ -405,15 +475,15 @@ SolveResult solve_static(const Model& model, const SolveOptions& options) {
   result.tangent_assemblies = ctx.tangent_assemblies;
   result.force_assemblies = ctx.force_assemblies;
   result.linear_solve_seconds = ctx.linear_seconds;
-  result.factorisations = linear.factorisations();
-  result.shifted_factorisations = linear.shifted_factorisations();
-  result.failed_factorisations = linear.failed_factorisations();
-  result.linear_iterations = linear.iterations();
-  result.eigenvalue_iterations = linear.eigenvalue_iterations();
+  result.factorisations = linear.factorisations() - factorisations_before;
+  result.shifted_factorisations = linear.shifted_factorisations() - shifted_before;
+  result.failed_factorisations = linear.failed_factorisations() - failed_before;
+  result.linear_iterations = linear.iterations() - iterations_before;
+  result.eigenvalue_iterations = linear.eigenvalue_iterations() - eigen_before;
   result.numeric_factorisation = linear.numeric_factorisation();
   result.cg_preconditioner = linear.preconditioner();
-  result.factorisation_seconds = linear.factorisation_seconds();
-  result.analysis_seconds = linear.analysis_seconds();
+  result.factorisation_seconds = linear.factorisation_seconds() - factorisation_seconds_before;
+  result.analysis_seconds = linear.analysis_seconds() - analysis_seconds_before;
   result.factor_entries = linear.factor_entries();
   result.factor_flops = linear.factor_flops();
   if (result.converged) {

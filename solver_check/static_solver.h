@@ -58,6 +58,7 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,24 @@ struct StepRecord {
   double seconds = 0.0;        ///< wall time of the attempt
 };
 
+/// What consecutive solves of one mesh share (reference-state iterations, parameter sweeps): the
+/// linear solver's fill-reducing ordering and symbolic analysis, computed by the first solve, and
+/// its last factorisation, which preconditions the next solve's first tangents. Give the same
+/// workspace only to solves whose models have the same elements, element order, constraints and
+/// tet4_pressure (node positions, materials and loads may differ); solve_static throws
+/// std::invalid_argument when the unknowns differ from the first solve's. One solve at a time.
+class SolverWorkspace {
+ public:
+  SolverWorkspace();
+  ~SolverWorkspace();
+  SolverWorkspace(const SolverWorkspace&) = delete;
+  SolverWorkspace& operator=(const SolverWorkspace&) = delete;
+  /// Solves that used it so far.
+  int solves() const;
+  struct Impl;  ///< defined in static_solver.cpp
+  std::unique_ptr<Impl> impl;
+};
+
 struct SolveOptions {
   /// Multiplies the model's gravity (1 = as in the model). Used e.g. for small-load linear checks.
   double gravity_scale = 1.0;
@@ -98,6 +117,13 @@ struct SolveOptions {
   /// Threads for assembly (CHOLMOD's BLAS: 1, see linear_solver.h); 0 = $OMP_NUM_THREADS, else all
   /// processors.
   int threads = 0;
+  /// Where Newton starts: one displacement per model node (model length unit), e.g. a nearby
+  /// problem's solution. The solve first tries the whole load in one increment from it (its
+  /// constrained components dropped); when that increment fails, the usual ramp from zero follows.
+  /// Empty (default): the ramp. A wrong length or a non-finite value: InputError.
+  std::vector<Eigen::Vector3d> initial_displacements;
+  /// Shared by consecutive solves of one mesh (SolverWorkspace); null: the solve's own.
+  SolverWorkspace* workspace = nullptr;
   /// Called after every attempted increment, e.g. to print progress; may be empty.
   std::function<void(const StepRecord&)> on_step;
 };
@@ -126,7 +152,7 @@ struct SolveResult {
   std::string numeric_factorisation;  ///< SparseSpdSolver::numeric_factorisation()
   std::string formulation;       ///< formulation_name(model)
   int threads = 1;                ///< assembly threads used
-  int factorisations = 0;         ///< numeric factorisations of the tangent
+  int factorisations = 0;         ///< numeric factorisations of the tangent (this solve's)
   int shifted_factorisations = 0; ///< of them, with a diagonal shift (tangent not positive definite)
   int failed_factorisations = 0;  ///< attempts given up (not positive definite), not in the above
   int linear_iterations = 0;      ///< preconditioned CG iterations on kept factorisations
@@ -141,6 +167,7 @@ struct SolveResult {
   double linear_solve_seconds = 0.0;  ///< wall time in factorisation and solves
   double factorisation_seconds = 0.0; ///< of it, in numeric factorisations
   double analysis_seconds = 0.0;  ///< of it, in the one symbolic analysis (ordering) and its planning
+                                  ///< (0 when a SolverWorkspace already held it)
   double factor_entries = 0.0;    ///< entries of the tangent's factor (SparseSpdSolver::factor_entries)
   double factor_flops = 0.0;      ///< flops of one factorisation (SparseSpdSolver::factor_flops; 0 = unknown)
   double seconds = 0.0;           ///< wall time of the solve
