@@ -368,8 +368,8 @@ Model build_model(const TetMesh& mesh, const ModelSettings& settings,
       throw InputError("model: face set '" + set.name + "' (" + set.selection + ") selects no face");
     m.face_sets.push_back(std::move(set));
   }
-  m.gravity.acceleration_m_s2 = settings.gravity_acceleration();
-  m.gravity.name = settings.gravity_direction;
+  m.gravity.acceleration_m_s2 = settings.gravity.acceleration();
+  m.gravity.name = settings.gravity.direction;
   m.units = settings.units;
   m.analysis = settings.analysis;
   if (settings.element.value_or(default_element(m.materials)) == ElementOrder::Quadratic) {

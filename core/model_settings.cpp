@@ -14,23 +14,6 @@ namespace tissuemesh {
 
 namespace {
 
-Eigen::Vector3d vector3(YamlMap& map, const std::string& key, const Eigen::Vector3d& fallback) {
-  if (!map.has(key)) return fallback;
-  YAML::Node node = map.raw(key);
-  if (!node.IsSequence() || node.size() != 3)
-    throw InputError(map.where(key) + ": expected a list of 3 numbers [x, y, z]");
-  Eigen::Vector3d v;
-  for (int i = 0; i < 3; ++i) {
-    try {
-      v[i] = node[i].as<double>();
-    } catch (const YAML::Exception&) {
-      throw InputError(map.where(key) + ": expected a list of 3 numbers, got '" + YAML::Dump(node) + "'");
-    }
-  }
-  if (!v.allFinite()) throw InputError(map.where(key) + ": values must be finite");
-  return v;
-}
-
 InterfaceSide parse_side(const YAML::Node& node, const std::string& where) {
   InterfaceSide side;
   auto add = [&](const YAML::Node& n) {
@@ -65,8 +48,8 @@ SetSelection parse_selection(YamlMap& entry) {
     ++given;
     s.kind = SetSelection::Kind::Plane;
     YamlMap plane = entry.map("plane");
-    s.plane_point_mm = vector3(plane, "point_mm", s.plane_point_mm);
-    const Eigen::Vector3d n = vector3(plane, "normal", s.plane_normal);
+    s.plane_point_mm = plane.vector3("point_mm", s.plane_point_mm);
+    const Eigen::Vector3d n = plane.vector3("normal", s.plane_normal);
     if (!(n.norm() > 0)) throw InputError(plane.where("normal") + ": must not be the zero vector");
     s.plane_normal = n.normalized();
     s.plane_tolerance_mm = plane.positive("tolerance_mm", s.plane_tolerance_mm);
@@ -233,28 +216,7 @@ ModelSettings ModelSettings::from_yaml(YamlMap& map) {
   }
 
   YamlMap gravity = map.map("gravity");
-  if (gravity.has("direction")) {
-    YAML::Node dir = gravity.raw("direction");
-    if (dir.IsSequence()) {
-      const Eigen::Vector3d v = vector3(gravity, "direction", Eigen::Vector3d::Zero());
-      if (!(v.norm() > 0)) throw InputError(gravity.where("direction") + ": must not be the zero vector");
-      s.gravity_direction = "vector";
-      s.gravity_vector = v.normalized();
-    } else {
-      s.gravity_direction = dir.Scalar();
-      if (s.gravity_direction != "prone" && s.gravity_direction != "supine" && s.gravity_direction != "none")
-        throw InputError(gravity.where("direction") + ": unknown direction '" + s.gravity_direction +
-                         "' (prone: towards anterior, supine: towards posterior, none, or [x, y, z] in LPS)");
-    }
-  }
-  if (gravity.has("acceleration")) {
-    s.gravity_m_s2 = parse_quantity(gravity.text("acceleration", ""), Dimension::Acceleration,
-                                    gravity.where("acceleration"));
-    if (!(s.gravity_m_s2 >= 0.0 && s.gravity_m_s2 <= 100.0))
-      throw InputError(gravity.where("acceleration") + ": " + std::to_string(s.gravity_m_s2) +
-                       " m/s^2 is outside [0, 100] m/s^2 (Earth: 9.81 m/s^2; check the unit)");
-  }
-  gravity.finish();
+  s.gravity = GravitySettings::from_yaml(gravity, GravitySettings());
 
   YamlMap a = map.map("analysis");
   AnalysisSettings& an = s.analysis;
@@ -303,14 +265,8 @@ void ModelSettings::to_yaml(YAML::Emitter& out) const {
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
-  out << YAML::Key << "gravity" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "direction"
-      << YAML::Value;
-  if (gravity_direction == "vector")
-    out << YAML::Flow << YAML::BeginSeq << gravity_vector[0] << gravity_vector[1] << gravity_vector[2] << YAML::EndSeq;
-  else
-    out << gravity_direction;
-  out << YAML::Key << "acceleration" << YAML::Value << format_quantity(gravity_m_s2, Dimension::Acceleration)
-      << YAML::EndMap;
+  out << YAML::Key << "gravity" << YAML::Value;
+  gravity.to_yaml(out);
   const AnalysisSettings& a = analysis;
   out << YAML::Key << "analysis" << YAML::Value << YAML::Flow << YAML::BeginMap;
   out << YAML::Key << "load_steps" << YAML::Value << a.load_steps;
@@ -325,12 +281,5 @@ void ModelSettings::to_yaml(YAML::Emitter& out) const {
   out << YAML::EndMap;
 }
 
-Eigen::Vector3d ModelSettings::gravity_acceleration() const {
-  // LPS: +y is posterior. Prone (face down): gravity pulls towards anterior = -y.
-  if (gravity_direction == "prone") return {0.0, -gravity_m_s2, 0.0};
-  if (gravity_direction == "supine") return {0.0, gravity_m_s2, 0.0};
-  if (gravity_direction == "none") return Eigen::Vector3d::Zero();
-  return gravity_m_s2 * gravity_vector;
-}
 
 }  // namespace tissuemesh

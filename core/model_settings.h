@@ -25,6 +25,7 @@
 //     analysis: {load_steps: 10, ...} # see AnalysisSettings in core/model.h
 #pragma once
 
+#include "core/gravity_settings.h"
 #include "core/model.h"
 #include "core/yaml_map.h"
 
@@ -78,9 +79,7 @@ struct ModelSettings {
   NodeOrder node_order = NodeOrder::ReverseCuthillMcKee;  ///< `rcm` | `mesh`
   std::vector<NodeSetSettings> node_sets;
   std::vector<FaceSetSettings> face_sets;
-  std::string gravity_direction = "prone";             ///< prone | supine | none | vector
-  Eigen::Vector3d gravity_vector = Eigen::Vector3d::Zero();  ///< when "vector" (unit)
-  double gravity_m_s2 = 9.81;
+  GravitySettings gravity;  ///< prone, 9.81 m/s^2 by default
   AnalysisSettings analysis;
 
   /// The settings `tissuemesh demo` uses: chest wall (muscle|outside) fixed, skin face set, prone
@@ -90,9 +89,6 @@ struct ModelSettings {
   /// Reads a `model:` mapping; calls map.finish(). Throws InputError naming the key.
   static ModelSettings from_yaml(YamlMap& map);
   void to_yaml(YAML::Emitter& out) const;
-
-  /// Gravity acceleration in m/s^2, LPS.
-  Eigen::Vector3d gravity_acceleration() const;
 };
 
 /// The element `auto` chooses for these tissue materials: tet10 when any has nu >= 0.49.

@@ -105,6 +105,22 @@ YamlMap YamlMap::map(const std::string& key) {
   return YamlMap(v, path_.empty() ? key : path_ + "." + key, source_);
 }
 
+Eigen::Vector3d YamlMap::vector3(const std::string& key, const Eigen::Vector3d& fallback) {
+  if (!has(key)) return fallback;
+  YAML::Node node = raw(key);
+  if (!node.IsSequence() || node.size() != 3) throw InputError(where(key) + ": expected a list of 3 numbers [x, y, z]");
+  Eigen::Vector3d v;
+  for (int i = 0; i < 3; ++i) {
+    try {
+      v[i] = node[i].as<double>();
+    } catch (const YAML::Exception&) {
+      throw InputError(where(key) + ": expected a list of 3 numbers, got '" + YAML::Dump(node) + "'");
+    }
+  }
+  if (!v.allFinite()) throw InputError(where(key) + ": values must be finite");
+  return v;
+}
+
 YAML::Node YamlMap::raw(const std::string& key) {
   read_.insert(key);
   return node_.IsMap() ? node_[key] : YAML::Node();

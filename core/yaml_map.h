@@ -7,6 +7,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <Eigen/Core>
+
 #include <set>
 #include <string>
 #include <vector>
@@ -26,6 +28,8 @@ class YamlMap {
   bool boolean(const std::string& key, bool fallback);
   std::string text(const std::string& key, const std::string& fallback);
   std::vector<int> integers(const std::string& key, const std::vector<int>& fallback);
+  /// A list of 3 finite numbers [x, y, z], or `fallback` when absent.
+  Eigen::Vector3d vector3(const std::string& key, const Eigen::Vector3d& fallback);
   /// Same, with a required key.
   std::string required_text(const std::string& key);
 

@@ -257,10 +257,10 @@ TEST(ModelBuilder, RcmTet10KeepsCornersFirstAndSetsOnTheSamePoints) {
 }
 
 TEST(ModelBuilder, GravityByNameAndVector) {
-  EXPECT_EQ(settings_from("gravity: {direction: supine}").gravity_acceleration(), Eigen::Vector3d(0, 9.81, 0));
-  EXPECT_EQ(settings_from("gravity: {direction: none}").gravity_acceleration(), Eigen::Vector3d::Zero());
+  EXPECT_EQ(settings_from("gravity: {direction: supine}").gravity.acceleration(), Eigen::Vector3d(0, 9.81, 0));
+  EXPECT_EQ(settings_from("gravity: {direction: none}").gravity.acceleration(), Eigen::Vector3d::Zero());
   const Eigen::Vector3d v = settings_from("gravity: {direction: [0, 0, -2], acceleration: 9810 mm/s^2}")
-                                .gravity_acceleration();
+                                .gravity.acceleration();
   EXPECT_NEAR((v - Eigen::Vector3d(0, 0, -9.81)).norm(), 0.0, 9.81 * test::kRelativeRoundoff);
 }
 

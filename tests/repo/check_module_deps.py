@@ -2,7 +2,7 @@
 """Checks that every module includes only what the module table (docs/architecture.md) allows.
 
 Data flows one way: core <- image <- surface <- volume -> quality -> core, the pipeline runs them,
-materials / fe_export / solver_check never see a mesher, and only the program (app/) sees
+materials / fe_export / solver_check / workflows never see a mesher, and only the program (app/) sees
 everything. A project header is included as "<folder>/<file>.h"; a third-party library by its own
 header names (CGAL/..., tetgen.h, vtk*.h, gmsh.h).
 
@@ -25,6 +25,7 @@ ALLOWED = {
     "materials": {"core"},
     "fe_export": {"core", "materials"},
     "solver_check": {"core", "materials"},
+    "workflows": {"core", "materials", "fe_export", "solver_check"},
 }
 # third-party headers -> the folders that may include them
 THIRD_PARTY = {

@@ -72,11 +72,11 @@ ModelSettings settings(ElementOrder order, const Vector3d& gravity_direction) {
   s.units = UnitSystem::MillimetreTonneSecond;  // mm, N, MPa
   s.element = order;
   if (gravity_direction.norm() > 0) {
-    s.gravity_direction = "vector";
-    s.gravity_vector = gravity_direction.normalized();
-    s.gravity_m_s2 = kG;
+    s.gravity.direction = "vector";
+    s.gravity.vector = gravity_direction.normalized();
+    s.gravity.m_s2 = kG;
   } else {
-    s.gravity_direction = "none";
+    s.gravity.direction = "none";
   }
   // Tight enough that the solver's error stays far below every discretisation error measured here.
   s.analysis.residual_tolerance = test::kSolverTightResidualRel;

@@ -103,8 +103,8 @@ ModelSettings block_settings(const BlockModelOptions& options) {
   }
   FaceSetSettings skin{"skin", grid_plane({0, 0, 0}, {0, 1, 0})};
   s.face_sets.push_back(skin);
-  s.gravity_direction = "prone";
-  s.gravity_m_s2 = 9.81;
+  s.gravity.direction = "prone";
+  s.gravity.m_s2 = 9.81;
   return s;
 }
 
