@@ -19,5 +19,6 @@ void add_info_command(CLI::App& cli, Invocation& run);
 void add_export_command(CLI::App& cli, Invocation& run);
 void add_solve_command(CLI::App& cli, Invocation& run);
 void add_check_command(CLI::App& cli, Invocation& run);
+void add_prone2supine_command(CLI::App& cli, Invocation& run);
 
 }  // namespace tissuemesh::app

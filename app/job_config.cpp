@@ -23,6 +23,8 @@ JobConfig JobConfig::load(const std::string& path) {
   c.model = ModelSettings::from_yaml(model);
   YamlMap exports = top.map("export");
   c.exports = ExportOptions::from_yaml(exports);
+  YamlMap prone2supine = top.map("prone2supine");
+  c.prone2supine = Prone2SupineSettings::from_yaml(prone2supine);
   top.finish();
   return c;
 }
@@ -54,6 +56,8 @@ std::string JobConfig::to_yaml() const {
   model.to_yaml(out);
   out << YAML::Key << "export" << YAML::Value;
   exports.to_yaml(out);
+  out << YAML::Key << "prone2supine" << YAML::Value;
+  prone2supine.to_yaml(out);
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

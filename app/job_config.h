@@ -1,6 +1,6 @@
 // JobConfig: one config file for the whole pipeline — meshing (pipeline/mesh_config.h), materials
 // (materials/material_config.h), the model (core/model_settings.h) and export options
-// (fe_export/export_options.h). Each command reads the parts it needs; unknown keys anywhere are
+// (fe_export/export_options.h) and the prone-to-supine workflow (workflows/prone2supine_settings.h). Each command reads the parts it needs; unknown keys anywhere are
 // errors. A file without meshing keys (no `tissues`) is a valid export/solve/check config; of the
 // meshing part it may then hold `tetgen:` (for check --tetgen).
 #pragma once
@@ -9,6 +9,7 @@
 #include "fe_export/export_options.h"
 #include "materials/material_config.h"
 #include "pipeline/mesh_config.h"
+#include "workflows/prone2supine_settings.h"
 
 #include <string>
 
@@ -22,6 +23,7 @@ struct JobConfig {
   bool has_materials = false;
   ModelSettings model;
   ExportOptions exports;
+  Prone2SupineSettings prone2supine;  ///< `prone2supine:` (defaults when absent)
 
   static JobConfig load(const std::string& path);
   /// `tissuemesh demo` without -c: identical to configs/phantom.yaml (a CLI test compares the two

@@ -24,7 +24,8 @@ std::string vec_text(const Eigen::Vector3d& v, const char* fmt) {
   return "(" + format_double(fmt, v.x()) + ", " + format_double(fmt, v.y()) + ", " + format_double(fmt, v.z()) + ")";
 }
 
-// "increment 3: load 0.3 (+0.1), 2 iterations, residual 3.1e-09, accepted, 0.04 s"
+}  // namespace
+
 std::string step_line(const StepRecord& s, int attempt) {
   std::string line = "increment " + std::to_string(attempt) + ": load " + format_double("%.4g", s.load_fraction) +
                      " (+" + format_double("%.4g", s.increment) + "), " + std::to_string(s.iterations) +
@@ -35,11 +36,15 @@ std::string step_line(const StepRecord& s, int attempt) {
   return line + ", " + format_double("%.2f", s.seconds) + " s";
 }
 
+namespace {
+
 nlohmann::json step_json(const StepRecord& s) {
   return {{"load_fraction", s.load_fraction}, {"increment", s.increment},       {"iterations", s.iterations},
           {"residual_norms", s.residual_norms}, {"step_lengths", s.step_lengths}, {"accepted", s.accepted},
           {"note", s.note},                   {"seconds", s.seconds}};
 }
+
+}  // namespace
 
 // A NaN or infinity must never reach a file (nlohmann would write it as null): throws naming the
 // place. SolveResult is NaN-free by contract, so this is a programmer error (exit 1).
@@ -51,6 +56,8 @@ void require_finite(const nlohmann::json& j, const std::string& where) {
   if (j.is_array())
     for (std::size_t i = 0; i < j.size(); ++i) require_finite(j[i], where + "[" + std::to_string(i) + "]");
 }
+
+namespace {
 
 SolveResult run_solver(const Model& model, int threads, Progress& progress) {
   auto stage = progress.stage(std::string("solve (built-in, ") + formulation_name(model) + ", " +
@@ -86,6 +93,8 @@ ModelVtuData solution_arrays(const SolveResult& r, const CellFields& fields, dou
                      {"solver_message", {r.message}}};
   return d;
 }
+
+}  // namespace
 
 nlohmann::json solver_json(const SolveResult& r) {
   nlohmann::json steps = nlohmann::json::array();
@@ -123,6 +132,8 @@ nlohmann::json solver_json(const SolveResult& r) {
           {"seconds", r.seconds},
           {"steps", steps}};
 }
+
+namespace {
 
 nlohmann::json results_json(const Model& model, const SolveResult& r, const MotionSummary& motion,
                             const CellFields& fields) {

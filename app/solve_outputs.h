@@ -29,6 +29,18 @@
 
 namespace tissuemesh::app {
 
+/// One progress line per attempted load increment, numbered from 1 by `attempt`:
+/// "increment 3: load 0.3 (+0.1), 2 iterations, residual 3.1e-09, accepted, 0.04 s".
+std::string step_line(const StepRecord& s, int attempt);
+
+/// The solver part of a run record: linear solver, formulation, threads, convergence, every
+/// attempted increment, counts and times (solve.json's "solver").
+nlohmann::json solver_json(const SolveResult& r);
+
+/// Throws std::logic_error naming the place when `j` holds a non-finite number (a solver bug:
+/// nlohmann would write it as null). Call before writing a record.
+void require_finite(const nlohmann::json& j, const std::string& where);
+
 /// Solves `model` under its gravity with solve_static (settings: model.analysis) in a progress
 /// stage "solve (built-in, <tet4|tet10>, N dofs)" with one note per attempted load increment,
 /// stages DIR/solution.vtu and DIR/solve.json (header comment) into `out`, prints a summary and
