@@ -63,27 +63,33 @@ ReferenceStateResult estimate_reference_state(const Model& loaded, const Referen
   const int corners = loaded.num_corner_nodes;
   const std::vector<Eigen::Vector3d> x = corners_of(loaded, loaded.nodes);
 
+  // Every solve has the same elements and constraints: one workspace for all.
+  SolverWorkspace workspace;
   // Naive reversal: the imaged shape loaded by -g.
   SolveOptions reversed;
   reversed.gravity_scale = -1.0;
   reversed.threads = options.threads;
+  reversed.workspace = &workspace;
   result.reversal = solve_static(loaded, reversed);
   std::vector<Eigen::Vector3d> X = x;
+  std::vector<Eigen::Vector3d> start_u;  // warm start (mm) for the next solve; empty: from zero
   if (result.reversal.converged) {
     const std::vector<Eigen::Vector3d> u = to_mm(loaded, result.reversal.displacements);
     for (int v = 0; v < corners; ++v) X[v] = x[v] + u[v];
+    // X_0 deformed by -u_rev is x again: where its forward solve starts.
+    const std::vector<Eigen::Vector3d> X0 = with_corner_positions(loaded, X).nodes;
+    start_u.resize(X0.size());
+    for (std::size_t v = 0; v < X0.size(); ++v) start_u[v] = loaded.nodes[v] - X0[v];
   }
   // Not reversible (too soft for -g): start from the imaged shape itself.
   result.naive_nodes = with_corner_positions(loaded, X).nodes;
 
-  SolverWorkspace workspace;
   SolveOptions forward;
   forward.threads = options.threads;
   forward.workspace = &workspace;
   double alpha = options.relaxation_initial;
   std::vector<Eigen::Vector3d> best_X, best_r, best_u;  // best iterate, its residual phi(X) - x, its u (mm)
   double best = INFINITY;
-  std::vector<Eigen::Vector3d> start_u;  // warm start (mm) for the next solve; empty: from zero
   std::string last_note;
   for (int k = 0; k < options.max_iterations; ++k) {
     ReferenceIteration it;

@@ -17,8 +17,8 @@
 // (straight-edged reference elements, like every mesh the toolkit writes), and the mismatch is
 // measured at corner nodes. Constraints are the model's (a fixed node keeps u = 0, so its X is x;
 // a sliding node moves in its plane).
-// Cost: every forward solve after the naive one starts from the previous displacement corrected by
-// the update (u_k + X_k - X_{k+1}: the deformed shape then starts at x exactly) and shares one
+// Cost: every forward solve starts where its deformed shape is x (X_0 from -u_rev, later ones from
+// the previous displacement corrected by the update, u_k + X_k - X_{k+1}) and all solves share one
 // SolverWorkspace (ordering, symbolic analysis, last factor), so each takes a few Newton
 // iterations where a solve from zero takes a load ramp.
 //

@@ -6,6 +6,7 @@
 // as documented.
 #include "cli/cli_runner.h"
 #include "core/vtu_io.h"
+#include "image/image_io.h"
 #include "solver_check/calculix_dat.h"
 #include "solver_check/calculix_run.h"
 #include "support/test_paths.h"
@@ -263,6 +264,45 @@ TEST(Prone2Supine, TooSoftStopsWithExitOneTheBestIterateAndNoNaN) {
   const nlohmann::json j = nlohmann::json::parse(text);
   EXPECT_FALSE(j["reference_state"]["converged"].get<bool>());
   for (const Eigen::Vector3d& p : read_vtu((c.dir / "soft/reference.vtu").string()).points) ASSERT_TRUE(p.allFinite());
+}
+
+TEST(Prone2Supine, LabelsCarriedIntoTheSupineShapeKeepTheTumour) {
+  // The truth mesh and the image it was meshed from, taken as the prone pair: the carried tumour
+  // keeps its voxel count (its volume changes < 1 %) and sits at the supine tumour centroid of the
+  // record (to the voxel size).
+  const Case& c = the_case();
+  const auto r = run_cli("prone2supine truth/mesh.vtu -c coarse.yaml -o carried --image truth/phantom.nii.gz", c.dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const LabelImage prone = read_label_image((c.dir / "truth/phantom.nii.gz").string());
+  const LabelImage supine = read_label_image((c.dir / "carried/supine_labels.nii.gz").string());
+  EXPECT_LE((supine.spacing - prone.spacing).norm(), test::kHeaderCoordinateMm);
+  const nlohmann::json j = nlohmann::json::parse(read_file((c.dir / "carried/prone2supine.json").string()));
+  Eigen::Vector3d expected = Eigen::Vector3d::Zero();
+  for (const auto& t : j["tissues"])
+    if (t["name"] == "tumor")
+      for (int a = 0; a < 3; ++a) expected[a] = t["centroid_supine_mm"][a].get<double>();
+  auto tumour = [](const LabelImage& img, Eigen::Vector3d& centroid) {
+    std::size_t n = 0;
+    centroid.setZero();
+    for (int k = 0; k < img.dims[2]; ++k)
+      for (int jj = 0; jj < img.dims[1]; ++jj)
+        for (int i = 0; i < img.dims[0]; ++i)
+          if (img.at(i, jj, k) == 3) {
+            ++n;
+            centroid += img.to_physical(Eigen::Vector3d(i, jj, k));
+          }
+    if (n) centroid /= static_cast<double>(n);
+    return n;
+  };
+  Eigen::Vector3d prone_centroid, supine_centroid;
+  const std::size_t n_prone = tumour(prone, prone_centroid), n_supine = tumour(supine, supine_centroid);
+  std::cout << "[ p2s      ] carried labels: tumour " << n_prone << " -> " << n_supine << " voxels, centroid "
+            << (supine_centroid - expected).norm() << " mm from the record's supine tumour centroid (moved "
+            << (supine_centroid - prone_centroid).norm() << " mm)\n";
+  ASSERT_GT(n_prone, 100u);
+  EXPECT_NEAR(static_cast<double>(n_supine), static_cast<double>(n_prone), 0.05 * n_prone);
+  EXPECT_GT((supine_centroid - prone_centroid).norm(), 2.0);
+  EXPECT_LE((supine_centroid - expected).norm(), prone.spacing.maxCoeff());
 }
 
 }  // namespace

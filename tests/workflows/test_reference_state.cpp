@@ -68,17 +68,20 @@ TEST(ReferenceState, RecoversTheManufacturedUnloadedShape) {
               options.tolerance_mm + 1e-12);
 }
 
-TEST(ReferenceState, LaterSolvesStartWarmAndTakeFewNewtonIterations) {
+TEST(ReferenceState, ForwardSolvesStartWarmAndTakeFewNewtonIterations) {
   ReferenceStateOptions options;
   options.tolerance_mm = 1e-3;
   const ReferenceStateResult r = estimate_reference_state(truth().loaded, options, {});
   ASSERT_GE(r.history.size(), 3u);
-  int later = 0;
-  for (std::size_t k = 1; k < r.history.size(); ++k) {
-    later = std::max(later, r.history[k].newton_iterations);
-    EXPECT_EQ(r.history[k].increments, 1) << "forward solve " << k << " needed the ramp";
+  ASSERT_TRUE(r.reversal.converged);
+  int most = 0;
+  for (const ReferenceIteration& it : r.history) {
+    most = std::max(most, it.newton_iterations);
+    EXPECT_EQ(it.increments, 1) << "forward solve " << it.index << " needed the ramp";
   }
-  EXPECT_LT(later, r.history[0].newton_iterations);
+  std::cout << "[ workflow ] naive reversal (a ramp from zero): " << r.reversal.total_iterations
+            << " Newton iterations; forward solves: at most " << most << "\n";
+  EXPECT_LT(most, r.reversal.total_iterations);
 }
 
 TEST(ReferenceState, FixedNodesKeepTheirImagedPosition) {
