@@ -1,11 +1,13 @@
 // tissuemesh demo [--out DIR]: phantom -> labels on disk -> mesh -> report -> model exports ->
-// built-in solve -> CalculiX cross-check, the main job end to end.
+// built-in solve -> CalculiX cross-check, the main job end to end; with --prone2supine also the
+// prone-to-supine workflow on the mesh.
 #include "app/check_outputs.h"
 #include "app/cli_support.h"
 #include "app/commands.h"
 #include "app/export_outputs.h"
 #include "app/job_config.h"
 #include "app/mesh_outputs.h"
+#include "app/prone2supine_outputs.h"
 #include "app/solve_outputs.h"
 #include "core/errors.h"
 #include "core/output_dir.h"
@@ -25,6 +27,7 @@ struct DemoOptions {
   std::string config;
   bool print_config = false;
   bool skip_calculix = false;
+  bool prone2supine = false;
 };
 
 /// The figures of the run, last on the console: what the solve found (its record, solve.json) and
@@ -78,6 +81,9 @@ void add_demo_command(CLI::App& cli, Invocation& run) {
   sub->add_flag("--print-config", opt->print_config, "print the effective config and exit");
   sub->add_flag("--skip-calculix", opt->skip_calculix,
                 "do not run the CalculiX cross-check (no check.json, no calculix/); the built-in solve still runs");
+  sub->add_flag("--prone2supine", opt->prone2supine,
+                "also run prone-to-supine on the mesh (the phantom is the prone shape): DIR/reference.vtu, supine.vtu, "
+                "prone_check.vtu, supine_model.*, prone2supine.json, and points.csv for the tumour centre");
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("demo", [&] {
       const JobConfig job = opt->config.empty() ? JobConfig::phantom_default() : JobConfig::load(opt->config);
@@ -121,6 +127,21 @@ void add_demo_command(CLI::App& cli, Invocation& run) {
         std::cout << "\nCalculiX cross-check not run: the built-in solve did not converge\n";
       else
         check = calculix_check_into(model, job, export_inputs, run.command_line, progress, out, &solved);
+      std::optional<Prone2SupineOutcome> p2s;
+      if (opt->prone2supine) {
+        // The phantom's tumour centre as a landmark (the breast phantom only: other kinds have none).
+        Prone2SupineRequest request;
+        if (config.phantom.kind == "breast") {
+          request.points_path = out.stage("landmarks.csv").string();
+          const Eigen::Vector3d& c = config.phantom.tumor_center_mm;
+          write_text_file(request.points_path, "name,x_mm,y_mm,z_mm\ntumour_centre," + format_double("%.17g", c.x()) +
+                                                   "," + format_double("%.17g", c.y()) + "," +
+                                                   format_double("%.17g", c.z()) + "\n");
+        }
+        nlohmann::json p2s_inputs = export_inputs;
+        if (!request.points_path.empty()) p2s_inputs["points"] = out.final_path("landmarks.csv").string();
+        p2s = prone2supine_into(mesh, job, request, p2s_inputs, run.command_line, progress, out);
+      }
       out.commit();
       print_figures(solve_record, check ? &*check : nullptr);
       std::cout << "\nwrote " << out.target().string()
@@ -129,8 +150,15 @@ void add_demo_command(CLI::App& cli, Invocation& run) {
                 << (check ? ", check.json, calculix/" : "") << "}\n"
                 << "open solution.vtu in ParaView, colour by tissue_id and warp by displacement"
                 << (check ? "; calculix/ holds the deck CalculiX solved and its results\n" : "\n");
+      if (p2s)
+        std::cout << "prone to supine: " << out.target().string()
+                  << "/{reference.vtu, supine.vtu, prone_check.vtu, supine_model.{feb,inp,scn,vtk}, prone2supine.json"
+                  << (config.phantom.kind == "breast" ? ", landmarks.csv, points.csv" : "")
+                  << "}; open supine.vtu and warp by displacement_from_prone (mm) to see the supine shape\n";
       if (!solved.converged)
         throw SolverError("the built-in solve did not converge: " + solved.message + " (outputs written)");
+      if (p2s && !p2s->converged)
+        throw SolverError("prone to supine did not converge: " + p2s->failure + " (outputs written)");
       if (check && !check->builtin_converged)
         throw SolverError("the built-in solve of the CalculiX check did not converge: " + check->builtin_message +
                           " (outputs written)");

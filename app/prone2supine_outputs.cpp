@@ -185,6 +185,7 @@ Prone2SupineOutcome prone2supine_into(const TetMesh& mesh, const JobConfig& conf
     options.relaxation_initial = p2s.relaxation_initial;
     options.relaxation_growth = p2s.relaxation_growth;
     options.relaxation_cut = p2s.relaxation_cut;
+    options.anderson_memory = p2s.anderson_memory;
     options.threads = request.threads;
     ref = estimate_reference_state(unloading, options,
                                    [&](const ReferenceIteration& it) { stage.note(iteration_line(it)); });

@@ -52,6 +52,9 @@ Prone2SupineSettings Prone2SupineSettings::from_yaml(YamlMap& map) {
   s.relaxation_growth = relaxation.in_range("growth", s.relaxation_growth, 1.0, 10.0);
   s.relaxation_cut = relaxation.in_range("cut", s.relaxation_cut, 0.01, 0.99);
   relaxation.finish();
+  s.anderson_memory = map.integer("anderson_memory", s.anderson_memory);
+  if (s.anderson_memory < 0 || s.anderson_memory > 50)
+    throw InputError(map.where("anderson_memory") + ": must be in [0, 50], got " + std::to_string(s.anderson_memory));
   YamlMap unloading = map.map("unloading");
   s.unloading_constraints = read_constraints(unloading);
   unloading.finish();
@@ -71,6 +74,7 @@ void Prone2SupineSettings::to_yaml(YAML::Emitter& out) const {
   out << YAML::Key << "relaxation" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "initial"
       << YAML::Value << relaxation_initial << YAML::Key << "growth" << YAML::Value << relaxation_growth
       << YAML::Key << "cut" << YAML::Value << relaxation_cut << YAML::EndMap;
+  out << YAML::Key << "anderson_memory" << YAML::Value << anderson_memory;
   out << YAML::Key << "unloading" << YAML::Value << YAML::BeginMap;
   emit_constraints(out, unloading_constraints);
   out << YAML::EndMap;

@@ -9,6 +9,7 @@
 //                               # alpha of X <- X - alpha (phi(X) - x_prone): x growth after an
 //                               #   improvement (up to 1), x cut and a restart from the best
 //                               #   iterate after a worsening or a failed solve
+//     anderson_memory: 5        # Anderson acceleration of the updates (0: plain relaxation)
 //     unloading:                # prone -> unloaded reference (the model's prone gravity)
 //       constraints: {}         # node set -> fixed | sliding | free; sets not named keep model.node_sets'
 //     supine:                   # unloaded reference -> supine
@@ -33,6 +34,7 @@ struct Prone2SupineSettings {
   double relaxation_initial = 0.7;  ///< alpha of the first update, in (0, 1]
   double relaxation_growth = 1.05;  ///< alpha *= growth after an improvement (capped at 1), >= 1
   double relaxation_cut = 0.7;      ///< alpha *= cut after a worsening, in (0, 1)
+  int anderson_memory = 5;          ///< differences Anderson acceleration keeps, in [0, 50]; 0: plain relaxation
   /// Per node set name: its constraint in the unloading step (absent: as in model.node_sets).
   std::map<std::string, StepConstraint> unloading_constraints;
   GravitySettings supine_gravity = [] {

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "core/unit_system.h"
+#include "workflows/anderson_mixing.h"
 
 #include <algorithm>
 #include <chrono>
@@ -88,7 +89,9 @@ ReferenceStateResult estimate_reference_state(const Model& loaded, const Referen
   forward.threads = options.threads;
   forward.workspace = &workspace;
   double alpha = options.relaxation_initial;
-  std::vector<Eigen::Vector3d> best_X, best_r, best_u;  // best iterate, its residual phi(X) - x, its u (mm)
+  AndersonMixing mixing(options.anderson_memory);
+  std::vector<Eigen::Vector3d> best_X, best_u;  // best iterate and its displacement (mm)
+  Eigen::VectorXd best_f;                       // its fixed-point residual x - phi(X), flattened
   double best = INFINITY;
   std::string last_note;
   for (int k = 0; k < options.max_iterations; ++k) {
@@ -108,11 +111,12 @@ ReferenceStateResult estimate_reference_state(const Model& loaded, const Referen
       it.note = r.message;
       if (r.converged) {
         const std::vector<Eigen::Vector3d> u = to_mm(loaded, r.displacements);
-        std::vector<Eigen::Vector3d> res(corners);
+        Eigen::VectorXd f(3 * corners);
         double mismatch = 0.0;
         for (int v = 0; v < corners; ++v) {
-          res[v] = X[v] + u[v] - x[v];
-          mismatch = std::max(mismatch, res[v].norm());
+          const Eigen::Vector3d res = X[v] + u[v] - x[v];
+          f.segment<3>(3 * v) = -res;
+          mismatch = std::max(mismatch, res.norm());
         }
         it.mismatch_mm = mismatch;
         if (k == 0) {
@@ -124,7 +128,7 @@ ReferenceStateResult estimate_reference_state(const Model& loaded, const Referen
           if (k > 0) alpha = std::min(1.0, alpha * options.relaxation_growth);
           best = mismatch;
           best_X = X;
-          best_r = std::move(res);
+          best_f = std::move(f);
           best_u = u;
           result.best_iteration = k;
         }
@@ -133,6 +137,7 @@ ReferenceStateResult estimate_reference_state(const Model& loaded, const Referen
     if (!it.improved) {
       last_note = it.note;
       alpha *= options.relaxation_cut;
+      mixing.restart();  // the rejected iterate's secant information is not trusted
       it.note = (it.solved ? "worse than the best iterate" : "rejected: " + it.note);
     }
     result.history.push_back(it);
@@ -151,8 +156,12 @@ ReferenceStateResult estimate_reference_state(const Model& loaded, const Referen
       result.message = "stagnated: the relaxation fell below " + std::to_string(kMinAlpha) + " (last: " + last_note + ")";
       break;
     }
-    // X_{k+1} = X_best - alpha r_best; the next solve starts where phi(X_{k+1}) = x would hold.
-    for (int v = 0; v < corners; ++v) X[v] = best_X[v] - alpha * best_r[v];
+    // From the best iterate (the current one after an improvement): X_best - alpha r_best, with
+    // Anderson's secant correction; the next solve starts where phi(X_{k+1}) = x would hold.
+    Eigen::VectorXd flat(3 * corners);
+    for (int v = 0; v < corners; ++v) flat.segment<3>(3 * v) = best_X[v];
+    const Eigen::VectorXd next = mixing.next(flat, best_f, alpha);
+    for (int v = 0; v < corners; ++v) X[v] = next.segment<3>(3 * v);
     const std::vector<Eigen::Vector3d> next_nodes = with_corner_positions(loaded, X).nodes;
     const std::vector<Eigen::Vector3d> best_nodes = with_corner_positions(loaded, best_X).nodes;
     start_u.resize(loaded.nodes.size());

@@ -305,4 +305,16 @@ TEST(Prone2Supine, LabelsCarriedIntoTheSupineShapeKeepTheTumour) {
   EXPECT_LE((supine_centroid - expected).norm(), prone.spacing.maxCoeff());
 }
 
+TEST(Prone2Supine, DemoFlagAddsTheStepWithTheTumourCentreAsLandmark) {
+  const Case& c = the_case();
+  const auto r = run_cli("demo -c coarse.yaml --skip-calculix --prone2supine -o demo", c.dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  for (const char* f : {"mesh.vtu", "solution.vtu", "reference.vtu", "supine.vtu", "prone_check.vtu",
+                        "supine_model.inp", "prone2supine.json", "landmarks.csv", "points.csv"})
+    EXPECT_TRUE(std::filesystem::exists(c.dir / "demo" / f)) << f;
+  const std::string points = read_file((c.dir / "demo/points.csv").string());
+  EXPECT_NE(points.find("tumour_centre,"), std::string::npos) << points;
+  EXPECT_NE(points.find(",tumor\n"), std::string::npos) << points;  // the centre lies in the tumour
+}
+
 }  // namespace
