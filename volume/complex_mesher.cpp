@@ -102,12 +102,26 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
                      " % of the grid free");
   domain_stage.reset();
 
+  // Interior grading: the tet edge grows with the distance from the nearest surface triangle.
+  std::optional<SurfaceProjection> projection;
+  std::function<double(const Eigen::Vector3d&)> cell_size_mm = size_mm;
+  if (params.cell_growth > 0.0 || params.max_cell_edge_mm > 0.0) {
+    projection.emplace(surface);
+    projection->prepare_distance();
+    const SurfaceProjection* near = &*projection;
+    const double growth = params.cell_growth, cap = params.max_cell_edge_mm;
+    cell_size_mm = [&size_mm, near, growth, cap](const Eigen::Vector3d& x) {
+      const double e = size_mm(x) + (growth > 0.0 ? growth * near->distance(x) : 0.0);
+      return cap > 0.0 ? std::min(e, cap) : e;
+    };
+  }
+
   namespace p = CGAL::parameters;
   // The equilateral triangle of edge e has circumradius e / sqrt(3); the regular tet of edge e
   // has circumradius e sqrt(6) / 4.
   const Sizing edge{&size_mm, params.surface_edge_factor};
   const Sizing facet{&size_mm, params.surface_edge_factor / std::sqrt(3.0)};
-  const Sizing cell{&size_mm, params.cell_edge_factor * std::sqrt(6.0) / 4.0};
+  const Sizing cell{&cell_size_mm, params.cell_edge_factor * std::sqrt(6.0) / 4.0};
   const double distance =
       params.facet_distance_mm > 0 ? params.facet_distance_mm : 0.1 * mean_edge_mm;
   Criteria criteria(p::edge_size = edge, p::facet_angle = params.facet_angle_deg, p::facet_size = facet,
@@ -130,10 +144,9 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
       c3t3, [](double x, double y, double z) { return Eigen::Vector3d(x, y, z); }, false, surface.tissue_names);
   // The smoothing may move vertices of curved interfaces over the input surface (they stay on it);
   // the projection's trees are built only when it runs.
-  std::optional<SurfaceProjection> projection;
   SurfaceProjector onto_surface;
   if (params.optimise.smooth_slivers_below_deg > 0) {
-    projection.emplace(surface);
+    if (!projection) projection.emplace(surface);
     onto_surface = [&](int p, int q, Eigen::Vector3d& x) {
       const int patch = projection->patches().patch_of_pair(p, q);
       if (patch < 0) return false;

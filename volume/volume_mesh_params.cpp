@@ -6,6 +6,8 @@ VolumeMeshParams VolumeMeshParams::from_yaml(YamlMap& m) {
   VolumeMeshParams p;
   p.surface_edge_factor = m.in_range("surface_edge_factor", p.surface_edge_factor, 0.1, 10.0);
   p.cell_edge_factor = m.in_range("cell_edge_factor", p.cell_edge_factor, 0.1, 100.0);
+  p.cell_growth = m.in_range("cell_growth", p.cell_growth, 0.0, 100.0);
+  p.max_cell_edge_mm = m.in_range("max_cell_edge_mm", p.max_cell_edge_mm, 0.0, 1e6);
   p.feature_angle_deg = m.in_range("feature_angle_deg", p.feature_angle_deg, 1.0, 180.0);
   // Bounds: CGAL's refinement is only proven to terminate for facet angle <= 30 degrees and
   // radius-edge ratio >= 2 (CGAL Mesh_3 manual).
@@ -21,6 +23,8 @@ void VolumeMeshParams::to_yaml(YAML::Emitter& out) const {
   out << YAML::BeginMap;
   out << YAML::Key << "surface_edge_factor" << YAML::Value << surface_edge_factor;
   out << YAML::Key << "cell_edge_factor" << YAML::Value << cell_edge_factor;
+  out << YAML::Key << "cell_growth" << YAML::Value << cell_growth;
+  out << YAML::Key << "max_cell_edge_mm" << YAML::Value << max_cell_edge_mm;
   out << YAML::Key << "feature_angle_deg" << YAML::Value << feature_angle_deg;
   out << YAML::Key << "facet_angle_deg" << YAML::Value << facet_angle_deg;
   out << YAML::Key << "facet_distance_mm" << YAML::Value << facet_distance_mm;

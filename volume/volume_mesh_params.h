@@ -17,8 +17,16 @@ struct VolumeMeshParams {
   /// circumradius of the equilateral triangle of that edge, the feature edge size the edge itself.
   double surface_edge_factor = 1.0;
   /// Largest tet relative to h(x): the cell size criterion is the circumradius of the regular tet
-  /// whose edge is cell_edge_factor * h(x).
+  /// whose edge is cell_edge_factor * e(x), e(x) = min(h(x) + cell_growth * d(x), max_cell_edge_mm).
   double cell_edge_factor = 1.5;
+  /// Interior grading: how fast the tet edge may grow with the distance d(x) (mm) from the nearest
+  /// boundary or interface (mm of edge per mm of distance; 0 = no grading: tets as fine as the
+  /// surface everywhere). Radius-edge refinement keeps neighbours within a bounded size ratio.
+  double cell_growth = 0.0;
+  /// Cap of the graded tet edge e(x), mm; 0 = no cap (the radius-edge bound and the tissue's own
+  /// thickness then limit the tets).
+  double max_cell_edge_mm = 0.0;
+
   /// Edges where a patch folds by more than this (degrees between the normals of its two
   /// triangles) are protected like the junction curves, so creases stay sharp; 180 = junction
   /// curves only (the default: on a coarse remeshed surface many edges fold by more than 60

@@ -197,3 +197,45 @@ TEST(SurfaceReport, Table2CountsEveryStepAndTable3TheTets) {
   EXPECT_NE(text.find("Table 3 (total cells): " + std::to_string(m.tets.size()) + " tets"), std::string::npos) << text;
   EXPECT_NE(text.find("Table 2 (vertices and cells after each step)"), std::string::npos);
 }
+
+TEST(ComplexMesher, InteriorGradingGrowsTetsAwayFromTheSurfaceOnly) {
+  // Fine tets everywhere (cell edge 0.5 h), then the same with the edge growing by 1 mm per mm of
+  // distance from the surface: far fewer tets, larger ones inside, the same surfaces and volumes.
+  const RemeshResult s = remeshed(nested_spheres(), 2, 300);
+  VolumeMeshParams uniform;
+  uniform.cell_edge_factor = 0.5;
+  VolumeMeshParams graded = uniform;
+  graded.cell_growth = 1.0;
+  const ComplexMeshResult u = mesh(s, uniform), g = mesh(s, graded);
+  const ConformityReport c = check_conformity(g.mesh);
+  EXPECT_TRUE(c.conforming());
+  EXPECT_EQ(interfaces(c), (std::set<std::pair<int, int>>{{0, 1}, {1, 2}}));
+  expect_surface_volumes(g.mesh, s.surface);
+  EXPECT_GE(compute_quality(g.mesh).total.min_dihedral_deg, kComplexMeshMinDihedralDeg);
+  EXPECT_LT(g.mesh.tets.size(), u.mesh.tets.size() / 2);
+  // Mean volume of the tets whose centroid lies in the deeper half (deeper than half the largest
+  // centroid distance from the surface in the uniform mesh).
+  const SurfaceProjection near(s.surface);
+  auto centroid = [](const TetMesh& m, const std::array<int, 4>& t) {
+    return Eigen::Vector3d(0.25 * (m.points[t[0]] + m.points[t[1]] + m.points[t[2]] + m.points[t[3]]));
+  };
+  double deepest = 0.0;
+  for (const auto& t : u.mesh.tets) deepest = std::max(deepest, near.distance(centroid(u.mesh, t)));
+  auto deep_mean_volume = [&](const TetMesh& m) {
+    double sum = 0.0;
+    int n = 0;
+    for (const auto& t : m.tets) {
+      if (near.distance(centroid(m, t)) < 0.5 * deepest) continue;
+      sum += signed_tet_volume(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
+      ++n;
+    }
+    return n ? sum / n : 0.0;
+  };
+  std::cout << "[ volume   ] grading: " << u.mesh.tets.size() << " -> " << g.mesh.tets.size()
+            << " tets; mean deep tet " << deep_mean_volume(u.mesh) << " -> " << deep_mean_volume(g.mesh) << " mm^3\n";
+  EXPECT_GT(deep_mean_volume(g.mesh), 3.0 * deep_mean_volume(u.mesh));
+  // A cap at the surface size gives the ungraded tets back (the same criteria everywhere).
+  VolumeMeshParams capped = graded;
+  capped.max_cell_edge_mm = s.edge_length_mm;
+  EXPECT_EQ(mesh(s, capped).mesh.tets.size(), u.mesh.tets.size());
+}
