@@ -20,5 +20,6 @@ void add_export_command(CLI::App& cli, Invocation& run);
 void add_solve_command(CLI::App& cli, Invocation& run);
 void add_check_command(CLI::App& cli, Invocation& run);
 void add_prone2supine_command(CLI::App& cli, Invocation& run);
+void add_sweep_command(CLI::App& cli, Invocation& run);
 
 }  // namespace tissuemesh::app

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   add_solve_command(cli, run);
   add_check_command(cli, run);
   add_prone2supine_command(cli, run);
+  add_sweep_command(cli, run);
   add_info_command(cli, run);
   try {
     cli.parse(argc, argv);

@@ -412,6 +412,13 @@ SparseSpdSolver::~SparseSpdSolver() = default;
 
 double SparseSpdSolver::factor_entries() const { return impl_->factor_entries; }
 double SparseSpdSolver::factor_flops() const { return impl_->factor_flops; }
+void SparseSpdSolver::forget_factorisation() {
+  impl_->exact_factor = false;
+  impl_->sigma_start = kMinShift;
+  impl_->last_shifted = false;
+  impl_->last_cg_iterations = 0;
+}
+
 double SparseSpdSolver::analysis_seconds() const { return impl_->analysis_seconds; }
 
 std::vector<int> SparseSpdSolver::ordering() const {

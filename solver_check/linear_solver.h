@@ -53,6 +53,10 @@ class SparseSpdSolver {
   /// Solves K x = b (K: lower triangle) to ||K x - b|| <= rtol ||b|` (see the header comment).
   bool solve(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol);
 
+  /// Forgets the kept factorisation and the shift history (the analysis stays): the next solve
+  /// factorises its own K, so that its result no longer depends on earlier solves.
+  void forget_factorisation();
+
   /// "CHOLMOD supernodal LLT" or "Eigen SimplicialLDLT" (the factorisation).
   std::string name() const;
   /// Who computes the numeric factorisations: "SupernodalCholesky, 2 threads (two subtrees at

@@ -340,6 +340,9 @@ struct SolverWorkspace::Impl {
 SolverWorkspace::SolverWorkspace() : impl(std::make_unique<Impl>()) {}
 SolverWorkspace::~SolverWorkspace() = default;
 int SolverWorkspace::solves() const { return impl->solves; }
+void SolverWorkspace::forget_factorisation() {
+  if (impl->linear) impl->linear->forget_factorisation();
+}
 
 std::string formulation_name(const Model& model) {
   if (model.order == ElementOrder::Quadratic) return "tet10";

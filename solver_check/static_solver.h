@@ -104,6 +104,9 @@ class SolverWorkspace {
   SolverWorkspace& operator=(const SolverWorkspace&) = delete;
   /// Solves that used it so far.
   int solves() const;
+  /// Drops the kept factorisation (the analysis stays): the next solve's result then depends only
+  /// on its model and start, not on the solves before it (sweeps that must be reproducible).
+  void forget_factorisation();
   struct Impl;  ///< defined in static_solver.cpp
   std::unique_ptr<Impl> impl;
 };

@@ -1,0 +1,151 @@
+// tissuemesh sweep MESH -c CONFIG --sweep SWEEP.yaml -o DIR [--jobs N] [--shard I/N] [--merge]
+// [--no-warm-start]: one solve per sample of a parameter design, resumable (app/sweep_outputs.h).
+#include "app/cli_support.h"
+#include "app/commands.h"
+#include "app/export_outputs.h"
+#include "app/job_config.h"
+#include "app/sweep_outputs.h"
+#include "core/errors.h"
+#include "workflows/sweep_parameters.h"
+
+#include <algorithm>
+#include <atomic>
+#include <fstream>
+#include <sstream>
+#include <csignal>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+namespace tissuemesh::app {
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop = true; }
+
+struct SweepCliOptions : ModelJobOptions {
+  std::string sweep, shard;
+  int jobs = 1, threads = 0;
+  bool merge = false, no_warm_start = false;
+};
+
+/// "I/N" with 1 <= I <= N.
+std::pair<int, int> parse_shard(const std::string& text) {
+  int i = 0, n = 0;
+  char slash = 0;
+  std::istringstream in(text);
+  if (!(in >> i >> slash >> n) || slash != '/' || !(in >> std::ws).eof() || n < 1 || i < 1 || i > n)
+    throw InputError("--shard " + text + ": expected I/N with 1 <= I <= N (e.g. 2/4)");
+  return {i, n};
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& cli, Invocation& run) {
+  auto opt = std::make_shared<SweepCliOptions>();
+  CLI::App* sub = cli.add_subcommand(
+      "sweep",
+      "Solve the model of MESH + CONFIG once per sample of a parameter design (SWEEP.yaml: parameters by config path, "
+      "grid / lhs / sobol / table): DIR/results.csv, results.jsonl, summary.json, summary.txt (ranges, standardised "
+      "regression coefficients, Sobol' indices), plots/*.svg. Resumable: rerun the same command to finish an "
+      "interrupted sweep. A sample that fails is a row with converged=false, not a stopped sweep.");
+  add_model_job_options(*sub, *opt);
+  sub->add_option("--sweep", opt->sweep, "the sweep file (parameters, design)")->required();
+  sub->add_option("--jobs", opt->jobs, "samples run side by side (default 1)")->check(CLI::PositiveNumber);
+  sub->add_option("--threads", opt->threads,
+                  "assembly threads per sample (default 0: the processors divided among the jobs)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--shard", opt->shard, "run only part I of N of the design (samples i with i mod N = I - 1)");
+  sub->add_flag("--merge", opt->merge, "write results and summary from the samples in DIR (after sharded runs)");
+  sub->add_flag("--no-warm-start", opt->no_warm_start, "start every solve from zero");
+  sub->callback([opt, &run] {
+    run.exit_code = run_guarded("sweep", [&] {
+      const JobConfig config = JobConfig::load(opt->config);
+      const SweepSpec spec = SweepSpec::load(opt->sweep);
+      if (opt->print_config) {
+        std::cout << config.to_yaml() << "---\n" << spec.to_yaml();
+        return;
+      }
+      if (opt->out.empty()) throw InputError("-o DIR is required");
+      Progress progress = console_progress();
+      const JobModel job = read_job_model(opt->mesh, config, progress);
+      for (const SweepParameter& p : spec.parameters) check_parameter_path(job.model, p.path);
+      const std::vector<SweepSample> design = make_design(spec);
+      const std::filesystem::path dir(opt->out);
+      nlohmann::json identity = {{"mesh", file_hash(opt->mesh)},
+                                 {"config", file_hash(opt->config)},
+                                 {"sweep file", file_hash(opt->sweep)},
+                                 {"design size", design.size()}};
+      if (spec.design == DesignType::Table) identity["design table"] = file_hash(spec.table_file);
+      nlohmann::json record = run_record_common(progress, run.command_line);
+      record["inputs"] = job.inputs;
+      record["inputs"]["sweep"] = std::filesystem::absolute(opt->sweep).string();
+      record["sweep"] = spec.to_yaml();
+      record["config"] = {{"source", config.source}, {"effective_yaml", config.to_yaml()}};
+      record["model"] = model_summary_json(job.model);
+      open_sweep_dir(dir, identity, record);
+
+      if (!opt->merge) {
+        const std::vector<int> done = finished_samples(dir);
+        std::vector<int> todo;
+        int shard = 1, shards = 1;
+        if (!opt->shard.empty()) std::tie(shard, shards) = parse_shard(opt->shard);
+        for (const SweepSample& s : design)
+          if (s.index % shards == shard - 1 && !std::binary_search(done.begin(), done.end(), s.index))
+            todo.push_back(s.index);
+        SweepRunOptions options;
+        options.jobs = opt->jobs;
+        const int cores = std::max(1u, std::thread::hardware_concurrency());
+        options.threads_per_job = opt->threads > 0 ? opt->threads : std::max(1, cores / opt->jobs);
+        options.warm_start = !opt->no_warm_start;
+        if (options.warm_start) options.finished_fields = saved_fields(dir, done, job.model.nodes.size());
+        g_stop = false;
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        options.should_stop = [] { return g_stop.load(); };
+        auto stage = progress.stage("sweep: " + std::to_string(todo.size()) + " samples to run of " +
+                                    std::to_string(design.size()) + " (" + std::to_string(done.size()) +
+                                    " finished before), " + std::to_string(options.jobs) + " job(s) x " +
+                                    std::to_string(options.threads_per_job) + " thread(s)");
+        int finished = 0;
+        options.on_finished = [&](const SweepSample& s, const SampleOutcome& o) {
+          write_sample(dir, job.model, config, spec, s, o);
+          ++finished;
+          stage.note("sample " + std::to_string(s.index) + " (" + std::to_string(finished) + "/" +
+                     std::to_string(todo.size()) + "): " + (o.converged ? "max |u| " + format_double("%.4f", o.max_displacement_mm) + " mm"
+                                                                         : "FAILED: " + o.message) +
+                     ", " + std::to_string(o.newton_iterations) + " Newton iterations" +
+                     (o.warm_from >= 0 ? " from sample " + std::to_string(o.warm_from) : " from zero") + ", " +
+                     format_double("%.2f", o.seconds) + " s");
+        };
+        run_samples(job.model, spec, design, todo, options);
+        std::signal(SIGINT, SIG_DFL);
+        std::signal(SIGTERM, SIG_DFL);
+        if (g_stop)
+          throw SolverError("interrupted after " + std::to_string(finished) + " of " + std::to_string(todo.size()) +
+                            " samples; run the same command again to resume");
+        if (!opt->shard.empty()) {
+          std::cout << "shard " << shard << "/" << shards << ": " << finished << " samples written to " << dir.string()
+                    << "/samples; `tissuemesh sweep ... --merge` writes the results once every shard is done\n";
+          return;
+        }
+      }
+      int missing = 0;
+      {
+        auto stage = progress.stage("results and summary");
+        missing = write_results(dir, job.model, spec, design);
+      }
+      {
+        std::ifstream summary(dir / "summary.txt");
+        std::cout << summary.rdbuf();
+      }
+      std::cout << "wrote " << dir.string() << "/{results.csv, results.jsonl, summary.json, summary.txt, plots/}\n";
+      if (missing > 0)
+        throw SolverError(std::to_string(missing) + " of " + std::to_string(design.size()) +
+                          " samples are not finished (the results hold the others); run the missing shards");
+    });
+  });
+}
+
+}  // namespace tissuemesh::app

@@ -1,0 +1,115 @@
+#include "workflows/sweep_runner.h"
+
+#include "core/errors.h"
+#include "core/unit_system.h"
+#include "solver_check/static_solver.h"
+#include "workflows/sweep_parameters.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <thread>
+
+namespace tissuemesh {
+
+Model sample_model(const Model& base, const SweepSpec& spec, const SweepSample& sample) {
+  Model m = base;
+  for (std::size_t i = 0; i < spec.parameters.size(); ++i) apply_parameter(m, spec.parameters[i].path, sample.values[i]);
+  validate_model(m);
+  return m;
+}
+
+int run_samples(const Model& base, const SweepSpec& spec, const std::vector<SweepSample>& design,
+                const std::vector<int>& todo, SweepRunOptions options) {
+  std::mutex lock;
+  std::map<int, std::vector<Eigen::Vector3d>> fields = std::move(options.finished_fields);
+  std::atomic<std::size_t> next{0};
+  std::atomic<int> ran{0};
+  const double per_mm = length_from_mm(base.units, 1.0);
+
+  // The start of a sample: the nearest finished field among the warm_window samples before it.
+  auto pick_start = [&](const SweepSample& s) -> int {
+    if (!options.warm_start) return -1;
+    int best = -1;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (auto it = fields.lower_bound(s.index - options.warm_window); it != fields.end() && it->first < s.index; ++it) {
+      if (it->first < 0 || it->first >= static_cast<int>(design.size())) continue;
+      const std::vector<double>& u = design[it->first].unit;
+      double d = 0.0;
+      for (std::size_t k = 0; k < s.unit.size(); ++k) d += (s.unit[k] - u[k]) * (s.unit[k] - u[k]);
+      if (d < best_d) {
+        best_d = d;
+        best = it->first;
+      }
+    }
+    return best;
+  };
+
+  auto worker = [&] {
+    SolverWorkspace workspace;
+    for (;;) {
+      if (options.should_stop && options.should_stop()) return;
+      const std::size_t i = next++;
+      if (i >= todo.size()) return;
+      const SweepSample& s = design.at(todo[i]);
+      const auto start = std::chrono::steady_clock::now();
+      SampleOutcome out;
+      out.index = s.index;
+      try {
+        const Model m = sample_model(base, spec, s);
+        SolveOptions solve;
+        solve.threads = options.threads_per_job;
+        solve.workspace = &workspace;
+        {
+          std::lock_guard<std::mutex> g(lock);
+          out.warm_from = pick_start(s);
+          if (out.warm_from >= 0) {
+            const std::vector<Eigen::Vector3d>& u = fields.at(out.warm_from);
+            solve.initial_displacements.resize(u.size());
+            for (std::size_t v = 0; v < u.size(); ++v) solve.initial_displacements[v] = u[v] * per_mm;
+          }
+        }
+        workspace.forget_factorisation();
+        const SolveResult r = solve_static(m, solve);
+        out.converged = r.converged;
+        out.message = r.message;
+        out.increments = static_cast<int>(r.steps.size());
+        out.newton_iterations = r.total_iterations;
+        out.displacements_mm.resize(r.displacements.size());
+        for (std::size_t v = 0; v < r.displacements.size(); ++v) out.displacements_mm[v] = r.displacements[v] / per_mm;
+        const MotionSummary motion = tissue_motion(m, r.displacements);
+        out.max_displacement_mm = motion.max_displacement_mm;
+        out.tissues = motion.tissues;
+        const double weight = r.total_load.norm();
+        out.reaction_vs_weight_rel =
+            weight > 0.0 ? (r.total_reaction + r.load_fraction * r.total_load).norm() / weight : 0.0;
+        if (!r.converged) out.displacements_mm.clear();
+      } catch (const InputError& e) {
+        out.converged = false;
+        out.message = e.what();
+      } catch (const SolverError& e) {
+        out.converged = false;
+        out.message = e.what();
+      }
+      out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::lock_guard<std::mutex> g(lock);
+      if (out.converged) fields[s.index] = out.displacements_mm;
+      if (options.on_finished) options.on_finished(s, out);
+      ++ran;
+    }
+  };
+  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(todo.size())));
+  if (jobs == 1) {
+    worker();
+  } else {
+    std::vector<std::thread> threads;
+    for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
+    for (std::thread& t : threads) t.join();
+  }
+  return ran;
+}
+
+}  // namespace tissuemesh
