@@ -222,3 +222,13 @@ TEST(Sweep, ASampleWithoutAPhysicalMaterialIsAFailedRowNotAStoppedSweep) {
 }
 
 }  // namespace
+
+TEST(Sweep, ShippedSweepFilesLoad) {
+  const Fixture& f = fixture();
+  for (const auto& e : std::filesystem::directory_iterator(std::string(TISSUEMESH_CONFIG_DIR) + "/sweeps")) {
+    const auto r = run_cli("sweep demo/mesh.vtu -c " + std::string(TISSUEMESH_CONFIG_DIR) +
+                               "/phantom.yaml --print-config --sweep " + e.path().string(), f.dir);
+    EXPECT_EQ(r.exit_code, 0) << e.path() << "\n" << r.err;
+    EXPECT_NE(r.out.find("design: {type:"), std::string::npos) << r.out;
+  }
+}
