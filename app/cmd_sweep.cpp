@@ -1,5 +1,5 @@
 // tissuemesh sweep MESH -c CONFIG --sweep SWEEP.yaml -o DIR [--jobs N] [--shard I/N] [--merge]
-// [--no-warm-start]: one solve per sample of a parameter design, resumable (app/sweep_outputs.h).
+// [--no-warm-start] [--points P.csv]: one solve per sample of a parameter design, resumable (app/sweep_outputs.h).
 #include "app/cli_support.h"
 #include "app/commands.h"
 #include "app/export_outputs.h"
@@ -25,7 +25,7 @@ std::atomic<bool> g_stop{false};
 extern "C" void on_signal(int) { g_stop = true; }
 
 struct SweepCliOptions : ModelJobOptions {
-  std::string sweep, shard;
+  std::string sweep, shard, points;
   int jobs = 1, threads = 0;
   bool merge = false, no_warm_start = false;
 };
@@ -57,6 +57,8 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
                   "assembly threads per sample (default 0: the processors divided among the jobs)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--shard", opt->shard, "run only part I of N of the design (samples i with i mod N = I - 1)");
+  sub->add_option("--points", opt->points,
+                  "landmarks CSV 'name,x,y,z' (LPS mm, in the mesh): each sample's displaced positions in results.csv");
   sub->add_flag("--merge", opt->merge, "write results and summary from the samples in DIR (after sharded runs)");
   sub->add_flag("--no-warm-start", opt->no_warm_start, "start every solve from zero");
   sub->callback([opt, &run] {
@@ -71,6 +73,11 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
       Progress progress = console_progress();
       const JobModel job = read_job_model(opt->mesh, config, progress);
       for (const SweepParameter& p : spec.parameters) check_parameter_path(job.model, p.path);
+      SweepLandmarks landmarks;
+      if (!opt->points.empty()) {
+        landmarks.points = read_landmarks_csv(opt->points);
+        landmarks.where = locate_landmarks(job.model, landmarks.points);
+      }
       const std::vector<SweepSample> design = make_design(spec);
       const std::filesystem::path dir(opt->out);
       nlohmann::json identity = {{"mesh", file_hash(opt->mesh)},
@@ -78,6 +85,7 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
                                  {"sweep file", file_hash(opt->sweep)},
                                  {"design size", design.size()}};
       if (spec.design == DesignType::Table) identity["design table"] = file_hash(spec.table_file);
+      if (!opt->points.empty()) identity["points file"] = file_hash(opt->points);
       nlohmann::json record = run_record_common(progress, run.command_line);
       record["inputs"] = job.inputs;
       record["inputs"]["sweep"] = std::filesystem::absolute(opt->sweep).string();
@@ -110,7 +118,7 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
                                     std::to_string(options.threads_per_job) + " thread(s)");
         int finished = 0;
         options.on_finished = [&](const SweepSample& s, const SampleOutcome& o) {
-          write_sample(dir, job.model, config, spec, s, o);
+          write_sample(dir, job.model, config, spec, landmarks, s, o);
           ++finished;
           stage.note("sample " + std::to_string(s.index) + " (" + std::to_string(finished) + "/" +
                      std::to_string(todo.size()) + "): " + (o.converged ? "max |u| " + format_double("%.4f", o.max_displacement_mm) + " mm"
@@ -134,7 +142,7 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
       int missing = 0;
       {
         auto stage = progress.stage("results and summary");
-        missing = write_results(dir, job.model, spec, design);
+        missing = write_results(dir, job.model, spec, landmarks, design);
       }
       {
         std::ifstream summary(dir / "summary.txt");

@@ -189,7 +189,7 @@ std::map<int, std::vector<Eigen::Vector3d>> saved_fields(const fs::path& dir, co
 }
 
 void write_sample(const fs::path& dir, const Model& base, const JobConfig& config, const SweepSpec& spec,
-                  const SweepSample& sample, const SampleOutcome& outcome) {
+                  const SweepLandmarks& landmarks, const SweepSample& sample, const SampleOutcome& outcome) {
   const std::string name = sample_name(sample.index);
   if (outcome.converged) {
     std::string bytes(reinterpret_cast<const char*>(outcome.displacements_mm.data()),
@@ -226,7 +226,16 @@ void write_sample(const fs::path& dir, const Model& base, const JobConfig& confi
     tissues.push_back({{"name", t.name},
                        {"mean_displacement_mm", vec_json(t.mean_displacement_mm)},
                        {"mean_displacement_magnitude_mm", t.mean_displacement_mm.norm()}});
+  nlohmann::json points = nlohmann::json::array();
+  if (outcome.converged)
+    for (std::size_t i = 0; i < landmarks.points.size(); ++i) {
+      const Eigen::Vector3d u = landmark_position(landmarks.where[i], outcome.displacements_mm);
+      points.push_back({{"name", landmarks.points[i].name},
+                        {"position_mm", vec_json(landmarks.points[i].position_mm + u)},
+                        {"displacement_mm", u.norm()}});
+    }
   const nlohmann::json j = {{"index", sample.index},
+                            {"landmarks", points},
                             {"group", sample.group},
                             {"base", sample.base},
                             {"values", values},
@@ -243,7 +252,8 @@ void write_sample(const fs::path& dir, const Model& base, const JobConfig& confi
   write_atomically(dir / "samples" / (name + ".json"), j.dump() + "\n");
 }
 
-int write_results(const fs::path& dir, const Model& base, const SweepSpec& spec, const std::vector<SweepSample>& design) {
+int write_results(const fs::path& dir, const Model& base, const SweepSpec& spec, const SweepLandmarks& landmarks,
+                  const std::vector<SweepSample>& design) {
   std::vector<nlohmann::json> rows;
   int missing = 0;
   for (const SweepSample& s : design) {
@@ -267,6 +277,8 @@ int write_results(const fs::path& dir, const Model& base, const SweepSpec& spec,
   for (const std::string& n : base.tissue_names)
     csv += "," + n + "_mean_displacement_x_mm," + n + "_mean_displacement_y_mm," + n + "_mean_displacement_z_mm," + n +
            "_mean_displacement_mm";
+  for (const Landmark& p : landmarks.points)
+    csv += "," + p.name + "_x_mm," + p.name + "_y_mm," + p.name + "_z_mm," + p.name + "_displacement_mm";
   csv += ",reaction_vs_weight_rel,increments,newton_iterations,warm_from,message\n";
   std::string jsonl;
   for (const nlohmann::json& r : rows) {
@@ -290,6 +302,16 @@ int write_results(const fs::path& dir, const Model& base, const SweepSpec& spec,
       csv += tissue_cols(t);
     }
     for (const std::string& n : base.tissue_names) csv += tissue_cols(n);
+    for (const Landmark& p : landmarks.points) {
+      std::string cols = ",,,,";
+      for (const auto& l : r["landmarks"])
+        if (l["name"] == p.name) {
+          const auto& x = l["position_mm"];
+          cols = "," + number(x[0].get<double>()) + "," + number(x[1].get<double>()) + "," + number(x[2].get<double>()) +
+                 "," + number(l["displacement_mm"].get<double>());
+        }
+      csv += cols;
+    }
     csv += "," + (ok ? number(r["reaction_vs_weight_rel"].get<double>()) : std::string()) + "," +
            std::to_string(r["increments"].get<int>()) + "," + std::to_string(r["newton_iterations"].get<int>()) + "," +
            std::to_string(r["warm_from"].get<int>()) + "," + csv_text(r["message"].get<std::string>()) + "\n";

@@ -16,6 +16,7 @@
 
 #include "app/job_config.h"
 #include "core/model.h"
+#include "workflows/landmarks.h"
 #include "workflows/sweep_design.h"
 #include "workflows/sweep_runner.h"
 #include "workflows/sweep_spec.h"
@@ -43,13 +44,20 @@ std::vector<int> finished_samples(const std::filesystem::path& dir);
 std::map<int, std::vector<Eigen::Vector3d>> saved_fields(const std::filesystem::path& dir, const std::vector<int>& indices,
                                                           std::size_t nodes);
 
-/// Writes one finished sample atomically (json last), with its field, VTU and models as asked.
+/// Landmarks a sweep follows (--points): their names, prone positions and places in the mesh.
+struct SweepLandmarks {
+  std::vector<Landmark> points;
+  std::vector<LandmarkLocation> where;
+};
+
+/// Writes one finished sample atomically (json last), with its field, VTU and models as asked and
+/// the landmarks' displaced positions.
 void write_sample(const std::filesystem::path& dir, const Model& base, const JobConfig& config, const SweepSpec& spec,
-                  const SweepSample& sample, const SampleOutcome& outcome);
+                  const SweepLandmarks& landmarks, const SweepSample& sample, const SampleOutcome& outcome);
 
 /// Writes results.csv, results.jsonl, summary.json, summary.txt and plots/ from the samples in DIR.
 /// Returns the number of design samples missing (the files then hold the finished ones).
 int write_results(const std::filesystem::path& dir, const Model& base, const SweepSpec& spec,
-                  const std::vector<SweepSample>& design);
+                  const SweepLandmarks& landmarks, const std::vector<SweepSample>& design);
 
 }  // namespace tissuemesh::app

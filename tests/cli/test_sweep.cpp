@@ -232,3 +232,51 @@ TEST(Sweep, ShippedSweepFilesLoad) {
     EXPECT_NE(r.out.find("design: {type:"), std::string::npos) << r.out;
   }
 }
+
+TEST(Sweep, LandmarksFollowEachSampleDisplacement) {
+  // A landmark on a mesh node moves with that node: its position in results.csv is the node plus
+  // the sample's displacement there (fields/NNNNNN.vtu, the model's node order = the mesh's with
+  // node_order: mesh).
+  const Fixture& f = fixture();
+  std::ofstream(f.dir / "mesh-order.yaml") << std::regex_replace(f.config_text, std::regex("node_order: rcm"),
+                                                                 "node_order: mesh");
+  std::ofstream(f.dir / "two.yaml") << "parameters:\n  materials.breast.mu: {values: [120 Pa, 240 Pa]}\n"
+                                       "design: {type: grid}\nsave_fields: true\n";
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName((f.dir / "demo/mesh.vtu").string().c_str());
+  reader->Update();
+  double node[3];
+  reader->GetOutput()->GetPoint(17, node);
+  {
+    std::ofstream points(f.dir / "points.csv");
+    points.precision(17);
+    points << "name,x,y,z\nmarker," << node[0] << "," << node[1] << "," << node[2] << "\n";
+  }
+  const auto r = run_cli("sweep demo/mesh.vtu -c mesh-order.yaml --sweep two.yaml -o marked --points points.csv", f.dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream csv(read_file((f.dir / "marked/results.csv").string()));
+  std::string header, line;
+  std::getline(csv, header);
+  std::vector<std::string> names;
+  {
+    std::stringstream ss(header);
+    std::string c;
+    while (std::getline(ss, c, ',')) names.push_back(c);
+  }
+  const auto column = std::find(names.begin(), names.end(), "marker_x_mm") - names.begin();
+  ASSERT_LT(column, static_cast<long>(names.size()));
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string c;
+    while (std::getline(ss, c, ',')) cells.push_back(c);
+    char name[16];
+    std::snprintf(name, sizeof name, "%06d.vtu", std::stoi(cells[0]));
+    const auto u = displacement(f.dir / "marked/fields" / name);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(std::stod(cells[column + k]), node[k] + u[17][k], 1e-6 * (1.0 + std::abs(node[k])));
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2);
+}
