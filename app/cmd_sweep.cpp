@@ -1,10 +1,11 @@
 // tissuemesh sweep MESH -c CONFIG --sweep SWEEP.yaml -o DIR [--jobs N] [--shard I/N] [--merge]
-// [--no-warm-start] [--points P.csv]: one solve per sample of a parameter design, resumable (app/sweep_outputs.h).
+// [--no-warm-start] [--points P.csv] [--slurm N [--submit]]: one solve per sample of a parameter design, resumable (app/sweep_outputs.h).
 #include "app/cli_support.h"
 #include "app/commands.h"
 #include "app/export_outputs.h"
 #include "app/job_config.h"
 #include "app/sweep_outputs.h"
+#include "app/sweep_slurm.h"
 #include "core/errors.h"
 #include "workflows/sweep_parameters.h"
 
@@ -26,8 +27,8 @@ extern "C" void on_signal(int) { g_stop = true; }
 
 struct SweepCliOptions : ModelJobOptions {
   std::string sweep, shard, points;
-  int jobs = 1, threads = 0;
-  bool merge = false, no_warm_start = false;
+  int jobs = 1, threads = 0, slurm = 0;
+  bool merge = false, no_warm_start = false, submit = false;
 };
 
 /// "I/N" with 1 <= I <= N.
@@ -61,6 +62,11 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
                   "landmarks CSV 'name,x,y,z' (LPS mm, in the mesh): each sample's displaced positions in results.csv");
   sub->add_flag("--merge", opt->merge, "write results and summary from the samples in DIR (after sharded runs)");
   sub->add_flag("--no-warm-start", opt->no_warm_start, "start every solve from zero");
+  sub->add_option("--slurm", opt->slurm,
+                  "write DIR/sweep.sbatch (a Slurm job array of N shards) and DIR/merge.sbatch (the merge, after the "
+                  "array); run nothing here")
+      ->check(CLI::Range(1, 10000));
+  sub->add_flag("--submit", opt->submit, "with --slurm: submit both with sbatch (the merge depends on the array)");
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("sweep", [&] {
       const JobConfig config = JobConfig::load(opt->config);
@@ -94,6 +100,26 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
       record["model"] = model_summary_json(job.model);
       open_sweep_dir(dir, identity, record);
 
+      if (opt->slurm > 0) {
+        std::vector<std::string> args = {"sweep", std::filesystem::absolute(opt->mesh).string(), "-c",
+                                         std::filesystem::absolute(opt->config).string(), "--sweep",
+                                         std::filesystem::absolute(opt->sweep).string(), "-o",
+                                         std::filesystem::absolute(dir).string()};
+        if (opt->no_warm_start) args.push_back("--no-warm-start");
+        if (!opt->points.empty()) args.insert(args.end(), {"--points", std::filesystem::absolute(opt->points).string()});
+        const SlurmScripts scripts = write_slurm_scripts(dir, args, opt->slurm);
+        std::cout << "wrote " << scripts.array.string() << " (" << opt->slurm << " shards) and " << scripts.merge.string()
+                  << "\n";
+        if (opt->submit) {
+          const std::string ids = submit_slurm(scripts);
+          std::cout << "submitted: " << ids << "; results in " << dir.string() << "/results.csv when the merge job ends\n";
+        } else {
+          std::cout << "submit with: jid=$(sbatch --parsable " << scripts.array.string()
+                    << ") && sbatch --dependency=afterok:$jid " << scripts.merge.string() << "\n";
+        }
+        return;
+      }
+      if (opt->submit) throw InputError("--submit needs --slurm N");
       if (!opt->merge) {
         const std::vector<int> done = finished_samples(dir);
         std::vector<int> todo;

@@ -23,6 +23,8 @@ PACKAGES=(
   liblapack-dev libblas-dev                     # the solver's own supernodal factorisation links them
   libgtest-dev libgmock-dev                     # test suites
   python3 python3-yaml python3-meshio           # repository checks; meshio reads our VTU files back
+  slurm-wlm munge                               # a real single-node Slurm for the sweep test
+                                                #   (tests/slurm/local_slurm.sh starts it)
 )
 
 missing=()
