@@ -23,6 +23,7 @@
 #include <regex>
 #include <thread>
 
+#include <fcntl.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -279,4 +280,43 @@ TEST(Sweep, LandmarksFollowEachSampleDisplacement) {
     ++rows;
   }
   EXPECT_EQ(rows, 2);
+}
+
+TEST(Sweep, SigintFinishesTheRunningSampleAndARerunCompletes) {
+  const Fixture& f = fixture();
+  std::ofstream(f.dir / "many.yaml") << "parameters:\n  materials.breast.mu: {range: [100 Pa, 400 Pa]}\n"
+                                        "design: {type: lhs, samples: 40, seed: 9}\nexport: [abaqus]\n";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    if (chdir(f.dir.c_str()) != 0) _exit(126);
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    execl(TISSUEMESH_EXE, TISSUEMESH_EXE, "sweep", "demo/mesh.vtu", "-c", "coarse.yaml", "--sweep", "many.yaml", "-o",
+          "stopped", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!std::filesystem::exists(f.dir / "stopped/samples/000001.json") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(child, SIGINT);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "the sweep did not end cleanly on SIGINT";
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  // What was written is whole: every sample file parses, and each converged one has its model.
+  int kept = 0;
+  for (const auto& e : std::filesystem::directory_iterator(f.dir / "stopped/samples")) {
+    if (e.path().extension() != ".json") continue;
+    EXPECT_NO_THROW(nlohmann::json::parse(read_file(e.path().string()))) << e.path();
+    EXPECT_TRUE(std::filesystem::exists(f.dir / "stopped/models" / e.path().stem() / "model.inp")) << e.path();
+    ++kept;
+  }
+  EXPECT_GE(kept, 2);
+  EXPECT_LT(kept, 40);
+  const auto r = run_cli("sweep demo/mesh.vtu -c coarse.yaml --sweep many.yaml -o stopped", f.dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json s = nlohmann::json::parse(read_file((f.dir / "stopped/summary.json").string()));
+  EXPECT_EQ(s["converged"].get<int>(), 40);
 }
