@@ -7,6 +7,7 @@
 #include "app/sweep_outputs.h"
 #include "app/sweep_slurm.h"
 #include "core/errors.h"
+#include "workflows/step_models.h"
 #include "workflows/sweep_parameters.h"
 
 #include <algorithm>
@@ -77,7 +78,14 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
       }
       if (opt->out.empty()) throw InputError("-o DIR is required");
       Progress progress = console_progress();
-      const JobModel job = read_job_model(opt->mesh, config, progress);
+      // prone2supine samples need the sliding sets of either step built with their normals.
+      JobConfig build = config;
+      if (spec.analysis == "prone2supine") build.model = settings_for_steps(config.model, config.prone2supine);
+      JobModel job;
+      job.inputs = job_inputs(opt->mesh, config);
+      job.model = build_job_model(read_job_mesh(opt->mesh, progress), build, progress);
+      if (spec.analysis == "prone2supine" && !(job.model.gravity.acceleration_m_s2.norm() > 0.0))
+        throw InputError(config.source + ": model.gravity is none: a prone2supine sweep needs the prone gravity");
       for (const SweepParameter& p : spec.parameters) check_parameter_path(job.model, p.path);
       SweepLandmarks landmarks;
       if (!opt->points.empty()) {
@@ -132,7 +140,9 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
         options.jobs = opt->jobs;
         const int cores = std::max(1u, std::thread::hardware_concurrency());
         options.threads_per_job = opt->threads > 0 ? opt->threads : std::max(1, cores / opt->jobs);
-        options.warm_start = !opt->no_warm_start;
+        options.warm_start = !opt->no_warm_start && spec.analysis == "solve";
+        options.model_settings = config.model;
+        options.prone2supine = config.prone2supine;
         if (options.warm_start) options.finished_fields = saved_fields(dir, done, job.model.nodes.size());
         g_stop = false;
         std::signal(SIGINT, on_signal);

@@ -3,6 +3,8 @@
 #include "core/errors.h"
 #include "core/unit_system.h"
 #include "solver_check/static_solver.h"
+#include "workflows/reference_state.h"
+#include "workflows/step_models.h"
 #include "workflows/sweep_parameters.h"
 
 #include <algorithm>
@@ -21,6 +23,52 @@ Model sample_model(const Model& base, const SweepSpec& spec, const SweepSample& 
   validate_model(m);
   return m;
 }
+
+namespace {
+
+/// One prone-to-supine sample: reference state, supine solve, prone-to-supine displacements.
+void run_prone2supine(const Model& m, const SweepRunOptions& options, SampleOutcome& out) {
+  const Prone2SupineSettings& p2s = options.prone2supine;
+  const Model unloading = unloading_model(m, options.model_settings, p2s);
+  ReferenceStateOptions ref_options;
+  ref_options.tolerance_mm = p2s.tolerance_mm;
+  ref_options.max_iterations = p2s.max_iterations;
+  ref_options.relaxation_initial = p2s.relaxation_initial;
+  ref_options.relaxation_growth = p2s.relaxation_growth;
+  ref_options.relaxation_cut = p2s.relaxation_cut;
+  ref_options.anderson_memory = p2s.anderson_memory;
+  ref_options.threads = options.threads_per_job;
+  const ReferenceStateResult ref = estimate_reference_state(unloading, ref_options, {});
+  int newton = ref.reversal.total_iterations, increments = static_cast<int>(ref.reversal.steps.size());
+  for (const ReferenceIteration& it : ref.history) {
+    newton += it.newton_iterations;
+    increments += it.increments;
+  }
+  const Model supine = supine_model(m, options.model_settings, p2s, ref.reference_nodes);
+  SolveOptions solve;
+  solve.threads = options.threads_per_job;
+  const SolveResult r = solve_static(supine, solve);
+  out.newton_iterations = newton + r.total_iterations;
+  out.increments = increments + static_cast<int>(r.steps.size());
+  out.converged = ref.converged && r.converged;
+  out.message = !ref.converged ? "reference state: " + ref.message
+                               : "reference state " + ref.message + "; supine solve " + r.message;
+  const double mm = 1.0 / length_from_mm(m.units, 1.0);
+  out.displacements_mm.resize(m.nodes.size());
+  std::vector<Eigen::Vector3d> from_prone(m.nodes.size());
+  for (std::size_t v = 0; v < m.nodes.size(); ++v) {
+    out.displacements_mm[v] = ref.reference_nodes[v] + r.displacements[v] * mm - unloading.nodes[v];
+    from_prone[v] = out.displacements_mm[v] / mm;  // model length unit, as tissue_motion expects
+  }
+  const MotionSummary motion = tissue_motion(unloading, from_prone);
+  out.max_displacement_mm = motion.max_displacement_mm;
+  out.tissues = motion.tissues;
+  const double weight = r.total_load.norm();
+  out.reaction_vs_weight_rel = weight > 0.0 ? (r.total_reaction + r.load_fraction * r.total_load).norm() / weight : 0.0;
+  if (!out.converged) out.displacements_mm.clear();
+}
+
+}  // namespace
 
 int run_samples(const Model& base, const SweepSpec& spec, const std::vector<SweepSample>& design,
                 const std::vector<int>& todo, SweepRunOptions options) {
@@ -71,6 +119,14 @@ int run_samples(const Model& base, const SweepSpec& spec, const std::vector<Swee
             solve.initial_displacements.resize(u.size());
             for (std::size_t v = 0; v < u.size(); ++v) solve.initial_displacements[v] = u[v] * per_mm;
           }
+        }
+        if (spec.analysis == "prone2supine") {
+          run_prone2supine(m, options, out);
+          out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          std::lock_guard<std::mutex> g(lock);
+          if (options.on_finished) options.on_finished(s, out);
+          ++ran;
+          continue;
         }
         workspace.forget_factorisation();
         const SolveResult r = solve_static(m, solve);

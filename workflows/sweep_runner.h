@@ -13,10 +13,18 @@
 // `jobs` samples run side by side on threads, each solve with `threads_per_job` assembly threads.
 // A sample whose values make no physical material, or whose solve does not converge, is an outcome
 // with converged = false and the reason; it never stops the sweep. Nothing throws for a sample.
+// With `analysis: prone2supine` each sample runs the prone-to-supine workflow instead
+// (workflows/reference_state.h, step_models.h; `base` must then be built with settings_for_steps):
+// the outcome's displacement is then the prone-to-supine one (supine minus prone position), the
+// tissue figures its volume-mean over the prone shape, the reaction the supine solve's, the Newton
+// iterations those of every solve, and converged both the reference state and the supine solve.
+// Its solves warm-start inside the workflow, not from other samples.
 #pragma once
 
 #include "core/model.h"
 #include "solver_check/tissue_motion.h"
+#include "core/model_settings.h"
+#include "workflows/prone2supine_settings.h"
 #include "workflows/sweep_design.h"
 #include "workflows/sweep_spec.h"
 
@@ -54,6 +62,9 @@ struct SweepRunOptions {
   std::function<void(const SweepSample&, const SampleOutcome&)> on_finished;
   /// Polled before each sample starts: true stops handing out samples (running ones finish).
   std::function<bool()> should_stop;
+  /// analysis prone2supine: the model settings (for the sets a step does not name) and the workflow.
+  ModelSettings model_settings;
+  Prone2SupineSettings prone2supine;
 };
 
 /// The model of one sample: `base` with `sample`'s values applied. InputError with the reason for

@@ -121,8 +121,8 @@ SweepSpec SweepSpec::load(const std::string& path) {
   }
   design.finish();
   s.analysis = top.text("analysis", s.analysis);
-  if (s.analysis != "solve")
-    throw InputError(top.where("analysis") + ": unknown analysis '" + s.analysis + "' (solve)");
+  if (s.analysis != "solve" && s.analysis != "prone2supine")
+    throw InputError(top.where("analysis") + ": unknown analysis '" + s.analysis + "' (solve or prone2supine)");
   s.save_fields = top.boolean("save_fields", false);
   if (top.has("export")) {
     const YAML::Node e = top.raw("export");

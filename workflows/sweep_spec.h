@@ -11,7 +11,9 @@
 //     # grid: {type: grid, levels: 3}   (levels per range; a values list gives its own)
 //     # sobol: {type: sobol, samples: 64, seed: 1}   (base N of Saltelli's design: N (d + 2) solves)
 //     # table: {type: table, file: samples.csv}      (header: the parameters' paths; SI values, ratios)
-//   analysis: solve                   # the per-sample analysis (solve: gravity)
+//   analysis: solve                   # the per-sample analysis: solve (the model under its gravity)
+//                                     #   | prone2supine (the config's prone2supine: section; the
+//                                     #   outputs are then the prone-to-supine displacements)
 //   save_fields: false                # each sample's solution.vtu
 //   export: []                        # each sample's models: febio, abaqus, sofa
 //

@@ -320,3 +320,30 @@ TEST(Sweep, SigintFinishesTheRunningSampleAndARerunCompletes) {
   const nlohmann::json s = nlohmann::json::parse(read_file((f.dir / "stopped/summary.json").string()));
   EXPECT_EQ(s["converged"].get<int>(), 40);
 }
+
+TEST(Sweep, Prone2SupineAnalysisEqualsTheCommandPerSample) {
+  // analysis: prone2supine runs the whole workflow per sample; its max prone-to-supine displacement
+  // equals `tissuemesh prone2supine` with that sample's config.
+  const Fixture& f = fixture();
+  std::ofstream(f.dir / "p2s.yaml") << "parameters:\n  materials.breast.mu: {values: [150 Pa, 300 Pa]}\n"
+                                       "design: {type: grid}\nanalysis: prone2supine\n";
+  const auto r = run_cli("sweep demo/mesh.vtu -c coarse.yaml --sweep p2s.yaml -o p2s-sweep", f.dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const std::string csv = read_file((f.dir / "p2s-sweep/results.csv").string());
+  for (const std::string& mu : {"150", "300"}) {
+    std::ofstream(f.dir / ("p2s-" + mu + ".yaml"))
+        << std::regex_replace(f.config_text, std::regex("mu: 150 Pa"), "mu: " + mu + " Pa");
+    const auto c = run_cli("prone2supine demo/mesh.vtu -c p2s-" + mu + ".yaml -o p2s-cmd-" + mu, f.dir);
+    ASSERT_EQ(c.exit_code, 0) << c.err;
+    const nlohmann::json j = nlohmann::json::parse(read_file((f.dir / ("p2s-cmd-" + mu) / "prone2supine.json").string()));
+    const double expected = j["max_displacement_prone_to_supine_mm"].get<double>();
+    const std::smatch m = [&] {
+      std::smatch found;
+      std::regex_search(csv, found, std::regex("\n[01],," + mu + ",true,([0-9.e+-]+),"));
+      return found;
+    }();
+    ASSERT_EQ(m.size(), 2u) << csv;
+    EXPECT_NEAR(std::stod(m[1].str()), expected, 1e-6 * expected) << "mu " << mu;
+    EXPECT_GT(expected, 10.0);
+  }
+}
