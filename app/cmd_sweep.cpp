@@ -7,6 +7,7 @@
 #include "app/sweep_outputs.h"
 #include "app/sweep_slurm.h"
 #include "core/errors.h"
+#include "fe_export/registry.h"
 #include "workflows/step_models.h"
 #include "workflows/sweep_parameters.h"
 
@@ -18,6 +19,8 @@
 #include <iostream>
 #include <memory>
 #include <thread>
+
+#include <unistd.h>
 
 namespace tissuemesh::app {
 
@@ -106,6 +109,22 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
       record["sweep"] = spec.to_yaml();
       record["config"] = {{"source", config.source}, {"effective_yaml", config.to_yaml()}};
       record["model"] = model_summary_json(job.model);
+      // A format that cannot write this model is refused before any sample runs.
+      if (!spec.exports.empty()) {
+        const std::filesystem::path probe = std::filesystem::temp_directory_path() /
+                                            ("tissuemesh-export-check-" + std::to_string(::getpid()));
+        std::filesystem::create_directories(probe);
+        try {
+          for (const std::string& f : spec.exports) {
+            const ExportFormat& format = export_format_named(f);
+            export_model(job.model, format, (probe / format.default_file).string(), config.exports);
+          }
+        } catch (...) {
+          std::filesystem::remove_all(probe);
+          throw;
+        }
+        std::filesystem::remove_all(probe);
+      }
       open_sweep_dir(dir, identity, record);
 
       if (opt->slurm > 0) {
@@ -143,7 +162,12 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
         options.warm_start = !opt->no_warm_start && spec.analysis == "solve";
         options.model_settings = config.model;
         options.prone2supine = config.prone2supine;
-        if (options.warm_start) options.finished_fields = saved_fields(dir, done, job.model.nodes.size());
+        if (options.warm_start && !todo.empty()) {
+          std::vector<int> near;  // only the fields a start can still come from
+          for (int d : done)
+            if (d >= todo.front() - options.warm_window) near.push_back(d);
+          options.finished_fields = saved_fields(dir, near, job.model.nodes.size());
+        }
         g_stop = false;
         std::signal(SIGINT, on_signal);
         std::signal(SIGTERM, on_signal);

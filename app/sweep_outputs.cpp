@@ -1,6 +1,7 @@
 #include "app/sweep_outputs.h"
 
 #include "app/cli_support.h"
+#include "app/solve_outputs.h"
 #include "core/errors.h"
 #include "fe_export/registry.h"
 #include "fe_export/vtu/write_model_vtu.h"
@@ -138,9 +139,11 @@ void open_sweep_dir(const fs::path& dir, const nlohmann::json& identity, const n
       throw InputError(record_path.string() + ": unreadable; not a sweep folder (use another -o)");
     }
     std::string differs;
+    const nlohmann::json recorded = old.value("identity", nlohmann::json::object());
     for (const auto& [key, value] : identity.items())
-      if (!old.contains("identity") || old["identity"].value(key, nlohmann::json()) != value)
-        differs += (differs.empty() ? "" : ", ") + key;
+      if (recorded.value(key, nlohmann::json()) != value) differs += (differs.empty() ? "" : ", ") + key;
+    for (const auto& [key, value] : recorded.items())
+      if (!identity.contains(key)) differs += (differs.empty() ? "" : ", ") + key;
     if (!differs.empty())
       throw InputError(dir.string() + " holds a sweep made with another " + differs +
                        " (sweep.json); use another -o, or remove the folder to start over");
@@ -249,6 +252,7 @@ void write_sample(const fs::path& dir, const Model& base, const JobConfig& confi
                             {"newton_iterations", outcome.newton_iterations},
                             {"warm_from", outcome.warm_from},
                             {"seconds", outcome.seconds}};
+  require_finite(j, "sample " + std::to_string(sample.index));
   write_atomically(dir / "samples" / (name + ".json"), j.dump() + "\n");
 }
 

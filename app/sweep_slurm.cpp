@@ -5,7 +5,11 @@
 
 #include <array>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <memory>
+
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -20,9 +24,11 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
+/// Runs `command`; returns its standard output (its standard error is appended when it fails).
 std::string run_capture(const std::string& command, int& status) {
   std::string out;
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((command + " 2>&1").c_str(), "r"), pclose);
+  const fs::path err = fs::temp_directory_path() / ("tissuemesh-sbatch-" + std::to_string(::getpid()) + ".err");
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((command + " 2>" + quoted(err.string())).c_str(), "r"), pclose);
   if (!pipe) {
     status = -1;
     return out;
@@ -30,8 +36,23 @@ std::string run_capture(const std::string& command, int& status) {
   std::array<char, 256> buf;
   while (fgets(buf.data(), buf.size(), pipe.get())) out += buf.data();
   status = pclose(pipe.release());
+  if (status != 0) {
+    std::ifstream e(err);
+    out += std::string(std::istreambuf_iterator<char>(e), std::istreambuf_iterator<char>());
+  }
+  std::error_code ec;
+  fs::remove(err, ec);
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
   return out;
+}
+
+/// The job id of `sbatch --parsable`: the last line's digits before any ';cluster'.
+std::string job_id(const std::string& out, const fs::path& script) {
+  const std::string last = out.substr(out.find_last_of('\n') == std::string::npos ? 0 : out.find_last_of('\n') + 1);
+  const std::string id = last.substr(0, last.find(';'));
+  if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+    throw InputError("sbatch gave no job id for " + script.string() + ": " + out);
+  return id;
 }
 
 }  // namespace
@@ -68,11 +89,11 @@ std::string submit_slurm(const SlurmScripts& scripts) {
   int status = 0;
   const std::string array = run_capture("sbatch --parsable " + quoted(scripts.array.string()), status);
   if (status != 0) throw InputError("sbatch refused " + scripts.array.string() + ": " + array);
-  const std::string array_id = array.substr(0, array.find(';'));
+  const std::string array_id = job_id(array, scripts.array);
   const std::string merge =
       run_capture("sbatch --parsable --dependency=afterok:" + array_id + " " + quoted(scripts.merge.string()), status);
   if (status != 0) throw InputError("sbatch refused " + scripts.merge.string() + ": " + merge);
-  return "array job " + array_id + ", merge job " + merge.substr(0, merge.find(';'));
+  return "array job " + array_id + ", merge job " + job_id(merge, scripts.merge);
 }
 
 }  // namespace tissuemesh::app

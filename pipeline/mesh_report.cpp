@@ -88,6 +88,7 @@ void add_sliver_repair_json(nlohmann::json& j, const SliverRepair& repair, const
   j["sliver_smoothing"] = {{"vertex_moves", repair.sliver_smoothing.moved_vertices},
                            {"vertex_moves_on_curved_surface", repair.sliver_smoothing.moved_on_surface},
                            {"passes", repair.sliver_smoothing.passes}};
+  j["sliver_splits"] = {{"edges_split", repair.sliver_splits.splits}};
   const BoundaryPinchRepair& p = repair.boundary_pinches;
   nlohmann::json per_tissue = nlohmann::json::object();
   for (std::size_t t = 0; t < p.removed_per_tissue.size(); ++t)
@@ -110,6 +111,8 @@ std::string sliver_repair_text(const SliverRepair& repair) {
     << " vertex moves (inside a tissue or within a flat or nearly flat boundary or interface";
   if (m.moved_on_surface > 0) s << "; " << m.moved_on_surface << " of them over a curved one, kept on the input's boundaries and interfaces";
   s << ") in " << m.passes << " passes\n";
+  if (repair.sliver_splits.splits > 0)
+    s << "sliver splits: " << repair.sliver_splits.splits << " edges inside one tissue split (a node added in each)\n";
   const BoundaryPinchRepair& p = repair.boundary_pinches;
   if (p.edges_found > 0)
     s << "boundary pinches opened: " << p.edges_found << " edges where the outer boundary touched itself, "

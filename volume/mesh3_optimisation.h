@@ -10,6 +10,7 @@
 #include "volume/boundary_slivers.h"
 #include "volume/sliver_flips.h"
 #include "volume/sliver_smoothing.h"
+#include "volume/sliver_splits.h"
 
 #include <string>
 #include <vector>
@@ -63,11 +64,13 @@ struct SliverRepair {
   BoundarySliverRemoval boundary_slivers;  ///< flat caps removed from the outer boundary
   SliverFlipResult sliver_flips;           ///< flips applied inside tissues
   SliverSmoothingResult sliver_smoothing;  ///< vertices moved (free, in-plane, on the surface)
+  SliverSplitResult sliver_splits;         ///< interior edges split where moves could not help
   BoundaryPinchRepair boundary_pinches;    ///< tets removed where the outer boundary pinches at an edge
 };
 
 /// The repairs `options` asks for (remove_boundary_slivers_deg, flip_slivers_below_deg,
-/// smooth_slivers_below_deg, open_boundary_pinches; in that order), on a mesh just extracted from
+/// smooth_slivers_below_deg and then, for what is still below 10 degrees, splits of edges inside one
+/// tissue (sliver_splits.h), open_boundary_pinches; in that order), on a mesh just extracted from
 /// CGAL; a mesh too large for them is left as it is, with a warning.
 /// `onto_surface` (optional): the surface the mesh's boundary and interfaces approximate, for the
 /// smoothing of vertices on curved ones (sliver_smoothing.h).

@@ -27,6 +27,8 @@ double value_at(const SweepParameter& p, double u) {
     const std::size_t k = p.values.size();
     return p.values[std::min(k - 1, static_cast<std::size_t>(std::floor(u * static_cast<double>(k))))];
   }
+  if (u == 0.0) return p.lo;  // the range's ends exactly, whatever the scale's round-off
+  if (u == 1.0) return p.hi;
   if (p.scale == ParameterScale::Log) return std::exp(std::log(p.lo) + u * (std::log(p.hi) - std::log(p.lo)));
   return p.lo + u * (p.hi - p.lo);
 }

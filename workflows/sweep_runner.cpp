@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -60,12 +61,15 @@ void run_prone2supine(const Model& m, const SweepRunOptions& options, SampleOutc
     out.displacements_mm[v] = ref.reference_nodes[v] + r.displacements[v] * mm - unloading.nodes[v];
     from_prone[v] = out.displacements_mm[v] / mm;  // model length unit, as tissue_motion expects
   }
+  if (!out.converged) {
+    out.displacements_mm.clear();
+    return;
+  }
   const MotionSummary motion = tissue_motion(unloading, from_prone);
   out.max_displacement_mm = motion.max_displacement_mm;
   out.tissues = motion.tissues;
   const double weight = r.total_load.norm();
   out.reaction_vs_weight_rel = weight > 0.0 ? (r.total_reaction + r.load_fraction * r.total_load).norm() / weight : 0.0;
-  if (!out.converged) out.displacements_mm.clear();
 }
 
 }  // namespace
@@ -96,10 +100,15 @@ int run_samples(const Model& base, const SweepSpec& spec, const std::vector<Swee
     return best;
   };
 
+  std::exception_ptr failure;  // the first error of on_finished (writing a sample): stops the sweep
   auto worker = [&] {
     SolverWorkspace workspace;
     for (;;) {
       if (options.should_stop && options.should_stop()) return;
+      {
+        std::lock_guard<std::mutex> g(lock);
+        if (failure) return;
+      }
       const std::size_t i = next++;
       if (i >= todo.size()) return;
       const SweepSample& s = design.at(todo[i]);
@@ -108,52 +117,60 @@ int run_samples(const Model& base, const SweepSpec& spec, const std::vector<Swee
       out.index = s.index;
       try {
         const Model m = sample_model(base, spec, s);
-        SolveOptions solve;
-        solve.threads = options.threads_per_job;
-        solve.workspace = &workspace;
-        {
-          std::lock_guard<std::mutex> g(lock);
-          out.warm_from = pick_start(s);
-          if (out.warm_from >= 0) {
-            const std::vector<Eigen::Vector3d>& u = fields.at(out.warm_from);
-            solve.initial_displacements.resize(u.size());
-            for (std::size_t v = 0; v < u.size(); ++v) solve.initial_displacements[v] = u[v] * per_mm;
-          }
-        }
         if (spec.analysis == "prone2supine") {
           run_prone2supine(m, options, out);
-          out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-          std::lock_guard<std::mutex> g(lock);
-          if (options.on_finished) options.on_finished(s, out);
-          ++ran;
-          continue;
+        } else {
+          SolveOptions solve;
+          solve.threads = options.threads_per_job;
+          solve.workspace = &workspace;
+          {
+            std::lock_guard<std::mutex> g(lock);
+            out.warm_from = pick_start(s);
+            if (out.warm_from >= 0) {
+              const std::vector<Eigen::Vector3d>& u = fields.at(out.warm_from);
+              solve.initial_displacements.resize(u.size());
+              for (std::size_t v = 0; v < u.size(); ++v) solve.initial_displacements[v] = u[v] * per_mm;
+            }
+          }
+          workspace.forget_factorisation();
+          const SolveResult r = solve_static(m, solve);
+          out.converged = r.converged;
+          out.message = r.message;
+          out.increments = static_cast<int>(r.steps.size());
+          out.newton_iterations = r.total_iterations;
+          if (r.converged) {
+            out.displacements_mm.resize(r.displacements.size());
+            for (std::size_t v = 0; v < r.displacements.size(); ++v)
+              out.displacements_mm[v] = r.displacements[v] / per_mm;
+            const MotionSummary motion = tissue_motion(m, r.displacements);
+            out.max_displacement_mm = motion.max_displacement_mm;
+            out.tissues = motion.tissues;
+            const double weight = r.total_load.norm();
+            out.reaction_vs_weight_rel =
+                weight > 0.0 ? (r.total_reaction + r.load_fraction * r.total_load).norm() / weight : 0.0;
+          }
         }
-        workspace.forget_factorisation();
-        const SolveResult r = solve_static(m, solve);
-        out.converged = r.converged;
-        out.message = r.message;
-        out.increments = static_cast<int>(r.steps.size());
-        out.newton_iterations = r.total_iterations;
-        out.displacements_mm.resize(r.displacements.size());
-        for (std::size_t v = 0; v < r.displacements.size(); ++v) out.displacements_mm[v] = r.displacements[v] / per_mm;
-        const MotionSummary motion = tissue_motion(m, r.displacements);
-        out.max_displacement_mm = motion.max_displacement_mm;
-        out.tissues = motion.tissues;
-        const double weight = r.total_load.norm();
-        out.reaction_vs_weight_rel =
-            weight > 0.0 ? (r.total_reaction + r.load_fraction * r.total_load).norm() / weight : 0.0;
-        if (!r.converged) out.displacements_mm.clear();
-      } catch (const InputError& e) {
-        out.converged = false;
-        out.message = e.what();
-      } catch (const SolverError& e) {
-        out.converged = false;
+      } catch (const std::exception& e) {  // a sample never stops the sweep: its row says why
+        out = SampleOutcome();
+        out.index = s.index;
         out.message = e.what();
       }
       out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::lock_guard<std::mutex> g(lock);
-      if (out.converged) fields[s.index] = out.displacements_mm;
-      if (options.on_finished) options.on_finished(s, out);
+      if (failure) return;
+      if (out.converged && options.warm_start) {
+        fields[s.index] = out.displacements_mm;
+        // Only the warm_window samples before the next one to start can still be chosen.
+        const std::size_t upcoming = next.load();
+        const int lowest = upcoming < todo.size() ? todo[upcoming] : std::numeric_limits<int>::max();
+        fields.erase(fields.begin(), fields.lower_bound(lowest - options.warm_window - options.jobs));
+      }
+      try {
+        if (options.on_finished) options.on_finished(s, out);
+      } catch (...) {
+        failure = std::current_exception();
+        return;
+      }
       ++ran;
     }
   };
@@ -165,6 +182,7 @@ int run_samples(const Model& base, const SweepSpec& spec, const std::vector<Swee
     for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
     for (std::thread& t : threads) t.join();
   }
+  if (failure) std::rethrow_exception(failure);
   return ran;
 }
 

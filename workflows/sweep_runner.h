@@ -11,8 +11,10 @@
 // same finished fields). With several jobs the start of a sample depends on which samples finished
 // first; results agree within the solver's tolerance.
 // `jobs` samples run side by side on threads, each solve with `threads_per_job` assembly threads.
-// A sample whose values make no physical material, or whose solve does not converge, is an outcome
-// with converged = false and the reason; it never stops the sweep. Nothing throws for a sample.
+// A sample whose values make no physical material, whose solve does not converge, or that fails in
+// any other way (std::exception) is an outcome with converged = false and the reason; it never
+// stops the sweep. An exception thrown by `on_finished` (writing the sample) stops handing out
+// samples and is rethrown by run_samples once the running ones have ended.
 // With `analysis: prone2supine` each sample runs the prone-to-supine workflow instead
 // (workflows/reference_state.h, step_models.h; `base` must then be built with settings_for_steps):
 // the outcome's displacement is then the prone-to-supine one (supine minus prone position), the
@@ -42,7 +44,7 @@ struct SampleOutcome {
   bool converged = false;
   std::string message;               ///< the solver's, or why the sample could not run
   double max_displacement_mm = 0.0;
-  std::vector<TissueMotion> tissues;  ///< per tissue: volume-mean displacement (mm) and more
+  std::vector<TissueMotion> tissues;  ///< per tissue: volume-mean displacement (mm) and more; empty unless converged
   double reaction_vs_weight_rel = 0.0;
   int increments = 0, newton_iterations = 0;
   double seconds = 0.0;               ///< wall time of the sample (model, solve, motion)

@@ -124,6 +124,9 @@ SweepSpec SweepSpec::load(const std::string& path) {
   if (s.analysis != "solve" && s.analysis != "prone2supine")
     throw InputError(top.where("analysis") + ": unknown analysis '" + s.analysis + "' (solve or prone2supine)");
   s.save_fields = top.boolean("save_fields", false);
+  if (s.analysis == "prone2supine" && top.has("export"))
+    throw InputError(top.where("export") + ": not available with analysis prone2supine (use `tissuemesh prone2supine` "
+                                           "on a sample's config for its supine models)");
   if (top.has("export")) {
     const YAML::Node e = top.raw("export");
     if (!e.IsSequence()) throw InputError(top.where("export") + ": expected a list of formats");
