@@ -179,15 +179,7 @@ Prone2SupineOutcome prone2supine_into(const TetMesh& mesh, const JobConfig& conf
   {
     auto stage = progress.stage("reference state (fixed point, tolerance " + format_double("%g", p2s.tolerance_mm) +
                                 " mm, at most " + std::to_string(p2s.max_iterations) + " forward solves)");
-    ReferenceStateOptions options;
-    options.tolerance_mm = p2s.tolerance_mm;
-    options.max_iterations = p2s.max_iterations;
-    options.relaxation_initial = p2s.relaxation_initial;
-    options.relaxation_growth = p2s.relaxation_growth;
-    options.relaxation_cut = p2s.relaxation_cut;
-    options.anderson_memory = p2s.anderson_memory;
-    options.threads = request.threads;
-    ref = estimate_reference_state(unloading, options,
+    ref = estimate_reference_state(unloading, reference_state_options(p2s, request.threads),
                                    [&](const ReferenceIteration& it) { stage.note(iteration_line(it)); });
     stage.note(ref.message);
   }

@@ -85,4 +85,16 @@ Model supine_model(const Model& model, const ModelSettings& settings, const Pron
   return m;
 }
 
+ReferenceStateOptions reference_state_options(const Prone2SupineSettings& p2s, int threads) {
+  ReferenceStateOptions o;
+  o.tolerance_mm = p2s.tolerance_mm;
+  o.max_iterations = p2s.max_iterations;
+  o.relaxation_initial = p2s.relaxation_initial;
+  o.relaxation_growth = p2s.relaxation_growth;
+  o.relaxation_cut = p2s.relaxation_cut;
+  o.anderson_memory = p2s.anderson_memory;
+  o.threads = threads;
+  return o;
+}
+
 }  // namespace tissuemesh

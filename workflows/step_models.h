@@ -13,6 +13,7 @@
 #include "core/model.h"
 #include "core/model_settings.h"
 #include "workflows/prone2supine_settings.h"
+#include "workflows/reference_state.h"
 
 #include <Eigen/Core>
 
@@ -34,5 +35,9 @@ Model unloading_model(const Model& model, const ModelSettings& settings, const P
 /// the supine step's constraints.
 Model supine_model(const Model& model, const ModelSettings& settings, const Prone2SupineSettings& p2s,
                    const std::vector<Eigen::Vector3d>& reference_nodes);
+
+/// The reference-state iteration's options from the `prone2supine:` section, with `threads`
+/// assembly threads.
+ReferenceStateOptions reference_state_options(const Prone2SupineSettings& p2s, int threads);
 
 }  // namespace tissuemesh

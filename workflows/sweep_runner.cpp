@@ -31,15 +31,8 @@ namespace {
 void run_prone2supine(const Model& m, const SweepRunOptions& options, SampleOutcome& out) {
   const Prone2SupineSettings& p2s = options.prone2supine;
   const Model unloading = unloading_model(m, options.model_settings, p2s);
-  ReferenceStateOptions ref_options;
-  ref_options.tolerance_mm = p2s.tolerance_mm;
-  ref_options.max_iterations = p2s.max_iterations;
-  ref_options.relaxation_initial = p2s.relaxation_initial;
-  ref_options.relaxation_growth = p2s.relaxation_growth;
-  ref_options.relaxation_cut = p2s.relaxation_cut;
-  ref_options.anderson_memory = p2s.anderson_memory;
-  ref_options.threads = options.threads_per_job;
-  const ReferenceStateResult ref = estimate_reference_state(unloading, ref_options, {});
+  const ReferenceStateResult ref =
+      estimate_reference_state(unloading, reference_state_options(p2s, options.threads_per_job), {});
   int newton = ref.reversal.total_iterations, increments = static_cast<int>(ref.reversal.steps.size());
   for (const ReferenceIteration& it : ref.history) {
     newton += it.newton_iterations;

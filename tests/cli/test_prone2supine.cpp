@@ -27,16 +27,11 @@
 #include <sstream>
 
 using namespace tissuemesh;
+using test::expect_no_nan_text;
 using test::read_file;
 using test::run_cli;
 
 namespace {
-
-/// No NaN or infinity spelled out in a JSON text (a path may contain the letters, a value may not).
-void expect_no_nan_text(const std::string& text) {
-  static const std::regex kBad(R"((^|[^A-Za-z_])(nan|inf|infinity)([^A-Za-z_]|$))", std::regex::icase);
-  EXPECT_FALSE(std::regex_search(text, kBad)) << text.substr(0, 400);
-}
 
 /// The acceptance figure: max nodal error of the recovered reference and supine shapes.
 constexpr double kRecoveredMm = 0.05;

@@ -27,6 +27,7 @@
 
 using namespace tissuemesh;
 using test::files_below;
+using test::expect_no_nan_text;
 using test::read_file;
 using test::run_cli;
 
@@ -88,12 +89,6 @@ void expect_all_finite(vtkUnstructuredGrid* grid) {
     grid->GetPoint(i, p);
     ASSERT_TRUE(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) << i;
   }
-}
-
-/// No NaN or infinity spelled out in a JSON text (nlohmann would write them as null).
-void expect_no_nan_text(const std::string& text) {
-  static const std::regex kBad(R"((^|[^A-Za-z_])(nan|inf|infinity)([^A-Za-z_]|$))", std::regex::icase);
-  EXPECT_FALSE(std::regex_search(text, kBad)) << text.substr(0, 400);
 }
 
 std::vector<Eigen::Vector3d> points(vtkUnstructuredGrid* grid) {

@@ -2,13 +2,21 @@
 
 #include "core/errors.h"
 
+#include <gtest/gtest.h>
+
 #include <fstream>
+#include <regex>
 
 namespace tissuemesh::test {
 
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream f(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+void expect_no_nan_text(const std::string& text) {
+  static const std::regex kBad(R"((^|[^A-Za-z_])(nan|inf|infinity)([^A-Za-z_]|$))", std::regex::icase);
+  EXPECT_FALSE(std::regex_search(text, kBad)) << text.substr(0, 400);
 }
 
 std::string input_error_of(const std::function<void()>& f) {

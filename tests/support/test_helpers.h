@@ -12,6 +12,10 @@ namespace tissuemesh::test {
 /// Whole content of a file ("" if missing).
 std::string read_file(const std::filesystem::path& path);
 
+/// Expects no NaN or infinity spelled out in a JSON text (nlohmann writes them as null, a printf
+/// as nan/inf); a word that merely contains the letters, e.g. in a path, is not one.
+void expect_no_nan_text(const std::string& text);
+
 /// The message of the InputError `f` throws, or "no error".
 std::string input_error_of(const std::function<void()>& f);
 
