@@ -3,6 +3,8 @@
 // The libraries never print. They open a stage (`auto s = progress.stage("mesh")`), optionally
 // report notes inside it, and the stage records its wall time when it ends. The program (app/)
 // passes a sink that prints each event; tests pass none. Timings go into every run's JSON record.
+// A note may say how far the stage has got (a fraction in [0, 1]: remeshing rounds, load
+// increments, sweep samples); a terminal sink draws it as a bar with the time left.
 #pragma once
 
 #include <chrono>
@@ -20,9 +22,10 @@ struct StageTiming {
 class Progress {
  public:
   enum class Event { Begin, Note, End };
-  /// `stage` name, `text` (note text, empty otherwise), `seconds` since the stage began.
+  /// `stage` name, `text` (note text, empty otherwise), `seconds` since the stage began,
+  /// `fraction` of the stage done (Note only; NaN when the note does not say).
   using Sink = std::function<void(Event, const std::string& stage, const std::string& text,
-                                  double seconds)>;
+                                  double seconds, double fraction)>;
 
   explicit Progress(Sink sink = {}) : sink_(std::move(sink)) {}
 
@@ -34,6 +37,8 @@ class Progress {
     ~Stage();
     /// A line inside the stage (e.g. "12345 tets"), with the time elapsed so far.
     void note(const std::string& text);
+    /// A note that also says how far the stage has got: `fraction` in [0, 1] (clamped).
+    void note(const std::string& text, double fraction);
     double elapsed() const;
 
    private:

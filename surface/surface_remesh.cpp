@@ -96,7 +96,8 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   for (int it = 0; it < rounds; ++it) {
     round(m, it >= 1);
     stage.note("round " + std::to_string(it + 1) + "/" + std::to_string(rounds) + ": " + std::to_string(m.vertices()) +
-               " vertices at edge length L " + format_double("%.3f", m.L) + " mm");
+               " vertices at edge length L " + format_double("%.3f", m.L) + " mm",
+               static_cast<double>(it + 1) / static_cast<double>(rounds));
     if (!budget) continue;
     // On the shipped budgets the first round ends within ~25 % of the budget and the schedule
     // above rescales L twice. Farther off, L is rescaled after every round. When the count stays

@@ -102,7 +102,7 @@ TEST(SurfaceRemesh, ReportsEveryRoundAndTheBudgetAsProgressNotes) {
   const TriSurface input = extract(img, 2).surface;
   const SurfaceProjection on_input(input);
   std::vector<std::string> notes;
-  Progress progress([&](Progress::Event e, const std::string& stage, const std::string& text, double) {
+  Progress progress([&](Progress::Event e, const std::string& stage, const std::string& text, double, double) {
     if (e == Progress::Event::Note && stage == "surface remeshing") notes.push_back(text);
   });
   RemeshOptions options;
@@ -507,7 +507,7 @@ TEST(SurfaceRemesh, FinalQualitySmoothingRaisesTheWorstTriangle) {
   // final smoothing): no such note.
   const CoarsePhantom& phantom = coarse_phantom();
   std::string note;
-  Progress progress([&](Progress::Event e, const std::string&, const std::string& text, double) {
+  Progress progress([&](Progress::Event e, const std::string&, const std::string& text, double, double) {
     if (e == Progress::Event::Note && text.rfind("quality smoothing", 0) == 0) note = text;
   });
   RemeshOptions options;
