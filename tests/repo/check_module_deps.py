@@ -26,13 +26,14 @@ ALLOWED = {
     "fe_export": {"core", "materials"},
     "solver_check": {"core", "materials"},
     "workflows": {"core", "materials", "fe_export", "solver_check"},
+    "report": {"core", "quality"},
 }
 # third-party headers -> the folders that may include them
 THIRD_PARTY = {
     re.compile(r"^CGAL/"): {"surface", "volume"},
     re.compile(r"^tetgen\.h$"): {"volume"},
     re.compile(r"^gmsh\.h$"): {"fe_export"},
-    re.compile(r"^vtk\w*\.h$"): {"core", "image", "fe_export"},
+    re.compile(r"^vtk\w*\.h$"): {"core", "image", "fe_export", "report"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
