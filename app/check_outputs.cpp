@@ -5,6 +5,7 @@
 
 #include "app/cli_support.h"
 #include "app/export_outputs.h"
+#include "app/solve_outputs.h"
 #include "core/errors.h"
 #include "core/unit_system.h"
 #include "fe_export/registry.h"
@@ -178,7 +179,7 @@ Model calculix_comparable_model(const Model& model, std::vector<std::string>& no
 
 CalculixCheck calculix_check_into(const Model& model, const JobConfig& job, const nlohmann::json& inputs,
                                   const std::string& command_line, Progress& progress, OutputDir& out,
-                                  const SolveResult* solved) {
+                                  const SolveResult* solved, RunReport* report) {
   const std::string ccx = require_calculix();
   std::vector<std::string> notes;
   const Model comparable = calculix_comparable_model(model, notes);
@@ -267,6 +268,13 @@ CalculixCheck calculix_check_into(const Model& model, const JobConfig& job, cons
   write_text_file(out.stage("check.json"), record.dump(2) + "\n");
   c.record = record;
   std::cout << table(c, mm, equilibrium);
+  if (report) {
+    std::vector<Eigen::Vector3d> u_mm(builtin.displacements.size());
+    for (std::size_t i = 0; i < u_mm.size(); ++i) u_mm[i] = builtin.displacements[i] * mm;
+    nlohmann::json solve_record = {{"solver", solver_json(builtin)}};
+    report->add_solve(comparable, u_mm, solve_record, "deformed by gravity (built-in solve of the checked model)");
+    report->add_table("CalculiX cross-check", table(c, mm, equilibrium));
+  }
   return c;
 }
 

@@ -3,6 +3,7 @@
 // Shared by `check --calculix` and `demo`.
 #pragma once
 
+#include "app/html_outputs.h"
 #include "app/job_config.h"
 #include "core/model.h"
 #include "core/output_dir.h"
@@ -57,8 +58,9 @@ struct CalculixCheck {
 /// Throws InputError when ccx is not found or the model cannot be written as a deck,
 /// SolverError when ccx fails (exit code and the tail of its log) or stops before the end of the
 /// step. A built-in solve that does not converge is not an exception: builtin_converged = false.
+/// The comparison table goes into `report` (report.html) when given.
 CalculixCheck calculix_check_into(const Model& model, const JobConfig& job, const nlohmann::json& inputs,
                                   const std::string& command_line, Progress& progress, OutputDir& out,
-                                  const SolveResult* solved = nullptr);
+                                  const SolveResult* solved = nullptr, RunReport* report = nullptr);
 
 }  // namespace tissuemesh::app

@@ -1,10 +1,17 @@
 #include "app/cli_support.h"
 
 #include "core/errors.h"
+#include "core/progress_bar.h"
 #include "core/resources.h"
 #include "volume/direct_mesher.h"
 
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <memory>
 #include <fstream>
 #include <iostream>
 
@@ -38,8 +45,31 @@ int run_guarded(const std::string& command, const std::function<void()>& body) {
   }
 }
 
+namespace {
+/// Columns of the terminal on stdout (80 when it cannot be told).
+int terminal_columns() {
+  winsize w{};
+  if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &w) == 0 && w.ws_col > 0) return w.ws_col;
+  return 80;
+}
+}  // namespace
+
 Progress console_progress() {
-  return Progress([](Progress::Event event, const std::string& stage, const std::string& text, double s) {
+  // A bar only where someone watches it: a terminal that can redraw a line.
+  const char* term = std::getenv("TERM");
+  const bool live = isatty(STDOUT_FILENO) && !(term && std::string(term) == "dumb");
+  auto bar_open = std::make_shared<bool>(false);
+  return Progress([live, bar_open](Progress::Event event, const std::string& stage, const std::string& text, double s,
+                                   double fraction) {
+    if (live && event == Progress::Event::Note && !std::isnan(fraction)) {
+      std::cout << "\r" << progress_bar_line(fraction, s, text, terminal_columns()) << "\033[K" << std::flush;
+      *bar_open = true;
+      return;
+    }
+    if (*bar_open) {
+      std::cout << "\n";
+      *bar_open = false;
+    }
     char buf[64];
     switch (event) {
       case Progress::Event::Begin:
@@ -79,6 +109,11 @@ void write_text_file(const std::filesystem::path& path, const std::string& text)
   std::ofstream f(path);
   f << text;
   if (!f.flush()) throw OutputError(path.string() + ": cannot write");
+}
+
+void add_html_flag(CLI::App& sub, bool& no_html) {
+  sub.add_flag("--no-html", no_html,
+               "do not write DIR/report.html (the offline page with the mesh in 3D, plots and tables)");
 }
 
 void add_model_job_options(CLI::App& sub, ModelJobOptions& options) {

@@ -44,6 +44,9 @@ struct ModelJobOptions {
   bool print_config = false;
 };
 
+/// Declares --no-html (report.html is written unless it is given) on `sub`.
+void add_html_flag(CLI::App& sub, bool& no_html);
+
 /// Declares MESH (required), -c/--config (required), -o/--out and --print-config on `sub`.
 void add_model_job_options(CLI::App& sub, ModelJobOptions& options);
 

@@ -24,6 +24,7 @@ struct CheckCliOptions : ModelJobOptions {
   bool tetgen = false;
   bool gmsh = false;
   std::string target = "tumor";
+  bool no_html = false;
 };
 }  // namespace
 
@@ -49,12 +50,15 @@ void add_check_command(CLI::App& cli, Invocation& run) {
                 "the Gmsh SDK's gamma and SICN of every tet of MESH against our radius ratio and SICN: per-tissue "
                 "minima and means by both, largest per-tet difference; exit 1 when they disagree");
   sub->add_option("--target", opt->target, "tissue whose displacement --tetgen compares (default tumor)");
+  add_html_flag(*sub, opt->no_html);
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("check", [&] {
       const JobConfig config = JobConfig::load(opt->config);
       if (!print_config_or_require_out(opt->print_config, config.to_yaml(), opt->out)) return;
       if (int(opt->calculix) + int(opt->tetgen) + int(opt->gmsh) != 1)
         throw InputError("choose one cross-check: --calculix, --tetgen or --gmsh");
+      require_report_assets(!opt->no_html);
+      RunReport report(!opt->no_html, "tissuemesh check: " + opt->mesh, run.command_line);
       if (opt->gmsh) {
         OutputDir out(opt->out);
         Progress progress = console_progress();
@@ -63,6 +67,9 @@ void add_check_command(CLI::App& cli, Invocation& run) {
             gmsh_check_into(mesh, job_inputs(opt->mesh, config),
                             {{"source", config.source}, {"effective_yaml", config.to_yaml()}}, run.command_line,
                             progress, out);
+        report.add_mesh_view(mesh);
+        report.add_record_table("Gmsh quality check (check.json)", check.record);
+        report.stage_into(out);
         out.commit();
         std::cout << "wrote " << out.target().string() << "/check.json and " << out.target().string()
                   << "/quality_gmsh.pos\n";
@@ -75,6 +82,9 @@ void add_check_command(CLI::App& cli, Invocation& run) {
         const TetMesh mesh = read_job_mesh(opt->mesh, progress);
         const TetgenCheck check = tetgen_check_into(mesh, opt->target, config, job_inputs(opt->mesh, config),
                                                     run.command_line, progress, out);
+        report.add_mesh_view(mesh);
+        report.add_record_table("TetGen cross-check (check.json)", check.record);
+        report.stage_into(out);
         out.commit();
         std::cout << "wrote " << out.target().string() << "/check.json and " << out.target().string()
                   << "/mesh_tetgen.vtu\n";
@@ -86,7 +96,10 @@ void add_check_command(CLI::App& cli, Invocation& run) {
       OutputDir out(opt->out);
       Progress progress = console_progress();
       const JobModel job = read_job_model(opt->mesh, config, progress);
-      const CalculixCheck check = calculix_check_into(job.model, config, job.inputs, run.command_line, progress, out);
+      const CalculixCheck check =
+          calculix_check_into(job.model, config, job.inputs, run.command_line, progress, out, nullptr, &report);
+      report.note_timings(check.record);
+      report.stage_into(out);
       out.commit();
       std::cout << "wrote " << out.target().string() << "/check.json and " << out.target().string()
                 << "/calculix/ (the deck CalculiX solved and its results)\n";

@@ -28,6 +28,7 @@ struct DemoOptions {
   bool print_config = false;
   bool skip_calculix = false;
   bool prone2supine = false;
+  bool no_html = false;
 };
 
 /// The figures of the run, last on the console: what the solve found (its record, solve.json) and
@@ -84,6 +85,7 @@ void add_demo_command(CLI::App& cli, Invocation& run) {
   sub->add_flag("--prone2supine", opt->prone2supine,
                 "also run prone-to-supine on the mesh (the phantom is the prone shape): DIR/reference.vtu, supine.vtu, "
                 "prone_check.vtu, supine_model.*, prone2supine.json, and points.csv for the tumour centre");
+  add_html_flag(*sub, opt->no_html);
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("demo", [&] {
       const JobConfig job = opt->config.empty() ? JobConfig::phantom_default() : JobConfig::load(opt->config);
@@ -94,8 +96,10 @@ void add_demo_command(CLI::App& cli, Invocation& run) {
       const MeshConfig& config = job.require_mesh();
       job.check_materials_cover_tissues();  // before minutes of meshing, not after
       if (!opt->skip_calculix) require_calculix("run the demo with --skip-calculix");
+      require_report_assets(!opt->no_html);
       OutputDir out(opt->out);
       Progress progress = console_progress();
+      RunReport report(!opt->no_html, "tissuemesh demo: the built-in phantom, meshed and solved", run.command_line);
       LabelImage generated;
       {
         auto stage = progress.stage("generate phantom");
@@ -113,20 +117,20 @@ void add_demo_command(CLI::App& cli, Invocation& run) {
       const nlohmann::json inputs = {{"labels", out.final_path("phantom.nii.gz").string()},
                                      {"labels_generated_by", "built-in phantom"},
                                      {"config", config.source}};
-      const TetMesh mesh = mesh_into(labels, "phantom.nii.gz", config, inputs, run.command_line, progress, out);
+      const TetMesh mesh = mesh_into(labels, "phantom.nii.gz", config, inputs, run.command_line, progress, out, &report);
       const nlohmann::json export_inputs = {{"mesh", out.final_path("mesh.vtu").string()}, {"config", job.source}};
       const Model model = build_job_model(mesh, job, progress);
       export_into(model, job, job.exports.formats, export_inputs, run.command_line, progress, out);
       SolveResult solved;
       const nlohmann::json solve_record =
-          solve_into(model, job, export_inputs, run.command_line, progress, out, &solved);
+          solve_into(model, job, export_inputs, run.command_line, progress, out, &solved, 0, &report);
       std::optional<CalculixCheck> check;
       if (opt->skip_calculix)
         std::cout << "\nCalculiX cross-check skipped (--skip-calculix)\n";
       else if (!solved.converged)
         std::cout << "\nCalculiX cross-check not run: the built-in solve did not converge\n";
       else
-        check = calculix_check_into(model, job, export_inputs, run.command_line, progress, out, &solved);
+        check = calculix_check_into(model, job, export_inputs, run.command_line, progress, out, &solved, &report);
       std::optional<Prone2SupineOutcome> p2s;
       if (opt->prone2supine) {
         // The phantom's tumour centre as a landmark (the breast phantom only: other kinds have none).
@@ -140,14 +144,17 @@ void add_demo_command(CLI::App& cli, Invocation& run) {
         }
         nlohmann::json p2s_inputs = export_inputs;
         if (!request.points_path.empty()) p2s_inputs["points"] = out.final_path("landmarks.csv").string();
-        p2s = prone2supine_into(mesh, job, request, p2s_inputs, run.command_line, progress, out);
+        p2s = prone2supine_into(mesh, job, request, p2s_inputs, run.command_line, progress, out, &report);
       }
+      report.stage_into(out);
       out.commit();
       print_figures(solve_record, check ? &*check : nullptr);
       std::cout << "\nwrote " << out.target().string()
                 << "/{phantom.nii.gz, mesh.vtu, report.json, report.txt, model.feb, model.inp, model.scn, "
                    "model.vtk, model.vtu, model.msh, export.json, solution.vtu, solve.json"
+                << (report.enabled() ? ", report.html" : "")
                 << (check ? ", check.json, calculix/" : "") << "}\n"
+                << (report.enabled() ? "open report.html in a browser (3D view, plots, tables), or " : "")
                 << "open solution.vtu in ParaView, colour by tissue_id and warp by displacement"
                 << (check ? "; calculix/ holds the deck CalculiX solved and its results\n" : "\n");
       if (p2s)

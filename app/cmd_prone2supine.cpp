@@ -16,6 +16,7 @@ namespace tissuemesh::app {
 namespace {
 struct Prone2SupineCliOptions : ModelJobOptions {
   Prone2SupineRequest request;
+  bool no_html = false;
 };
 }  // namespace
 
@@ -36,23 +37,28 @@ void add_prone2supine_command(CLI::App& cli, Invocation& run) {
   sub->add_option("--threads", opt->request.threads,
                   "assembly threads (default 0: $OMP_NUM_THREADS, else all processors)")
       ->check(CLI::NonNegativeNumber);
+  add_html_flag(*sub, opt->no_html);
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("prone2supine", [&] {
       const JobConfig config = JobConfig::load(opt->config);
       if (!print_config_or_require_out(opt->print_config, config.to_yaml(), opt->out)) return;
+      require_report_assets(!opt->no_html);
       OutputDir out(opt->out);  // fails early on an unwritable folder, before any work
       Progress progress = console_progress();
+      RunReport report(!opt->no_html, "tissuemesh prone2supine: " + opt->mesh, run.command_line);
       const TetMesh mesh = read_job_mesh(opt->mesh, progress);
       nlohmann::json inputs = job_inputs(opt->mesh, config);
       if (!opt->request.points_path.empty()) inputs["points"] = std::filesystem::absolute(opt->request.points_path);
       if (!opt->request.image_path.empty()) inputs["image"] = std::filesystem::absolute(opt->request.image_path);
       const Prone2SupineOutcome outcome =
-          prone2supine_into(mesh, config, opt->request, inputs, run.command_line, progress, out);
+          prone2supine_into(mesh, config, opt->request, inputs, run.command_line, progress, out, &report);
+      report.stage_into(out);
       out.commit();
       std::cout << "wrote " << out.target().string()
                 << "/{reference.vtu, supine.vtu, prone_check.vtu, supine_model.{feb,inp,scn,vtk}, prone2supine.json"
                 << (opt->request.points_path.empty() ? "" : ", points.csv")
-                << (opt->request.image_path.empty() ? "" : ", supine_labels.nii.gz") << "}\n";
+                << (opt->request.image_path.empty() ? "" : ", supine_labels.nii.gz")
+                << (report.enabled() ? ", report.html" : "") << "}\n";
       if (!outcome.converged)
         throw SolverError("did not converge: " + outcome.failure + " (the best iterate is written; see " +
                           out.final_path("prone2supine.json").string() + ")");

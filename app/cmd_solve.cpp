@@ -17,6 +17,7 @@ namespace tissuemesh::app {
 namespace {
 struct SolveCliOptions : ModelJobOptions {
   int threads = 0;
+  bool no_html = false;
 };
 }  // namespace
 
@@ -32,18 +33,22 @@ void add_solve_command(CLI::App& cli, Invocation& run) {
   add_model_job_options(*sub, *opt);
   sub->add_option("--threads", opt->threads, "assembly threads (default 0: $OMP_NUM_THREADS, else all processors)")
       ->check(CLI::NonNegativeNumber);
+  add_html_flag(*sub, opt->no_html);
   sub->callback([opt, &run] {
     run.exit_code = run_guarded("solve", [&] {
       const JobConfig config = JobConfig::load(opt->config);
       if (!print_config_or_require_out(opt->print_config, config.to_yaml(), opt->out)) return;
+      require_report_assets(!opt->no_html);
       OutputDir out(opt->out);  // fails early on an unwritable folder, before any work
       Progress progress = console_progress();
+      RunReport report(!opt->no_html, "tissuemesh solve: " + opt->mesh, run.command_line);
       const JobModel job = read_job_model(opt->mesh, config, progress);
       const nlohmann::json record =
-          solve_into(job.model, config, job.inputs, run.command_line, progress, out, nullptr, opt->threads);
+          solve_into(job.model, config, job.inputs, run.command_line, progress, out, nullptr, opt->threads, &report);
+      report.stage_into(out);
       out.commit();
       std::cout << "wrote " << out.final_path("solution.vtu").string() << ", " << out.final_path("solve.json").string()
-                << "\n";
+                << (report.enabled() ? ", " + out.final_path("report.html").string() : "") << "\n";
       const nlohmann::json& solver = record["solver"];
       if (!solver["converged"].get<bool>())
         throw SolverError("did not converge: " + solver["message"].get<std::string>() + " (load fraction " +

@@ -32,7 +32,7 @@ extern "C" void on_signal(int) { g_stop = true; }
 struct SweepCliOptions : ModelJobOptions {
   std::string sweep, shard, points;
   int jobs = 1, threads = 0, slurm = 0;
-  bool merge = false, no_warm_start = false, submit = false;
+  bool merge = false, no_warm_start = false, submit = false, no_html = false;
 };
 
 /// "I/N" with 1 <= I <= N.
@@ -66,6 +66,7 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
                   "landmarks CSV 'name,x,y,z' (LPS mm, in the mesh): each sample's displaced positions in results.csv");
   sub->add_flag("--merge", opt->merge, "write results and summary from the samples in DIR (after sharded runs)");
   sub->add_flag("--no-warm-start", opt->no_warm_start, "start every solve from zero");
+  add_html_flag(*sub, opt->no_html);
   sub->add_option("--slurm", opt->slurm,
                   "write DIR/sweep.sbatch (a Slurm job array of N shards) and DIR/merge.sbatch (the merge, after the "
                   "array); run nothing here")
@@ -79,6 +80,7 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
         std::cout << config.to_yaml() << "---\n" << spec.to_yaml();
         return;
       }
+      require_report_assets(!opt->no_html);
       if (opt->out.empty()) throw InputError("-o DIR is required");
       Progress progress = console_progress();
       // prone2supine samples need the sliding sets of either step built with their normals.
@@ -185,7 +187,8 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
                                                                          : "FAILED: " + o.message) +
                      ", " + std::to_string(o.newton_iterations) + " Newton iterations" +
                      (o.warm_from >= 0 ? " from sample " + std::to_string(o.warm_from) : " from zero") + ", " +
-                     format_double("%.2f", o.seconds) + " s");
+                     format_double("%.2f", o.seconds) + " s",
+                     static_cast<double>(finished) / static_cast<double>(todo.size()));
         };
         run_samples(job.model, spec, design, todo, options);
         std::signal(SIGINT, SIG_DFL);
@@ -202,13 +205,15 @@ void add_sweep_command(CLI::App& cli, Invocation& run) {
       int missing = 0;
       {
         auto stage = progress.stage("results and summary");
-        missing = write_results(dir, job.model, spec, landmarks, design);
+        RunReport report(!opt->no_html, "tissuemesh sweep: " + opt->sweep, run.command_line);
+        missing = write_results(dir, job.model, spec, landmarks, design, &report);
       }
       {
         std::ifstream summary(dir / "summary.txt");
         std::cout << summary.rdbuf();
       }
-      std::cout << "wrote " << dir.string() << "/{results.csv, results.jsonl, summary.json, summary.txt, plots/}\n";
+      std::cout << "wrote " << dir.string() << "/{results.csv, results.jsonl, summary.json, summary.txt, plots/"
+                << (opt->no_html ? "" : ", report.html") << "}\n";
       if (missing > 0)
         throw SolverError(std::to_string(missing) + " of " + std::to_string(design.size()) +
                           " samples are not finished (the results hold the others); run the missing shards");

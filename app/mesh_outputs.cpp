@@ -45,7 +45,8 @@ nlohmann::json mesh_record(const LabelImage& labels, const MeshConfig& config, c
 }  // namespace
 
 TetMesh mesh_into(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
-               const nlohmann::json& inputs, const std::string& cmd, Progress& progress, OutputDir& out) {
+               const nlohmann::json& inputs, const std::string& cmd, Progress& progress, OutputDir& out,
+               RunReport* report) {
   const MeshJobResult result = run_mesh_job(labels, image_name, config, progress);
   const bool conforming = result.conformity.conforming();
   if (conforming) {
@@ -61,11 +62,13 @@ TetMesh mesh_into(const LabelImage& labels, const std::string& image_name, const
   write_text(out.stage("report.txt"), text);
   std::cout << "\n" << text;
   if (!conforming) fail_nonconforming(out, result.conformity);
+  if (report) report->add_mesh(result.meshing.mesh, record, text);
   return result.meshing.mesh;
 }
 
 void surface_into(const LabelImage& labels, const std::string& image_name, const MeshConfig& config,
-                  const nlohmann::json& inputs, const std::string& cmd, Progress& progress, OutputDir& out) {
+                  const nlohmann::json& inputs, const std::string& cmd, Progress& progress, OutputDir& out,
+               RunReport* report) {
   const SurfaceJobResult result = run_surface_job(labels, image_name, config, progress);
   const bool write_mesh = result.volume && result.volume->conformity.conforming();
   {
@@ -88,6 +91,10 @@ void surface_into(const LabelImage& labels, const std::string& image_name, const
   write_text(out.stage("report.json"), record.dump(2) + "\n");
   write_text(out.stage("report.txt"), text);
   if (result.volume && !write_mesh) fail_nonconforming(out, result.volume->conformity);
+  if (report && write_mesh) {
+    report->add_mesh(result.volume->meshing.mesh, record, text);
+    report->add_junctions(result.surface());
+  }
   if (!result.volume_refused.empty()) {
     out.commit();
     throw MeshingError("no tet mesh: " + result.volume_refused + "; report.txt and report.json in " +

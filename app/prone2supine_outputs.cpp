@@ -149,7 +149,7 @@ const char* const kSupineFormats[] = {"febio", "abaqus", "sofa"};
 
 Prone2SupineOutcome prone2supine_into(const TetMesh& mesh, const JobConfig& config, const Prone2SupineRequest& request,
                                       const nlohmann::json& inputs, const std::string& command_line,
-                                      Progress& progress, OutputDir& out) {
+                                      Progress& progress, OutputDir& out, RunReport* report) {
   const Prone2SupineSettings& p2s = config.prone2supine;
   JobConfig build = config;
   build.model = settings_for_steps(config.model, p2s);  // sliding sets of either step carry normals
@@ -192,7 +192,7 @@ Prone2SupineOutcome prone2supine_into(const TetMesh& mesh, const JobConfig& conf
     SolveOptions options;
     options.threads = request.threads;
     int attempt = 0;
-    options.on_step = [&](const StepRecord& s) { stage.note(step_line(s, ++attempt)); };
+    options.on_step = [&](const StepRecord& s) { stage.note(step_line(s, ++attempt), s.accepted ? s.load_fraction : s.load_fraction - s.increment); };
     sup = solve_static(supine, options);
     stage.note(sup.message);
   }
@@ -274,6 +274,7 @@ Prone2SupineOutcome prone2supine_into(const TetMesh& mesh, const JobConfig& conf
   files.push_back("prone2supine.json");
   record["files"] = files;
   write_text_file(out.stage("prone2supine.json"), record.dump(2) + "\n");
+  if (report) report->add_prone2supine(base, prone, reference, supine_nodes, record);
 
   Prone2SupineOutcome outcome;
   outcome.record = record;

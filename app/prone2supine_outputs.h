@@ -15,6 +15,7 @@
 //                        centroids in the three configurations, landmarks, files, timings
 #pragma once
 
+#include "app/html_outputs.h"
 #include "app/job_config.h"
 #include "core/output_dir.h"
 #include "core/progress.h"
@@ -44,9 +45,10 @@ struct Prone2SupineOutcome {
 /// says why) and returns converged = false. Throws InputError before any solve for a bad config
 /// (unknown node set, no gravity), a bad landmark file or a landmark outside the mesh, an
 /// unreadable image; what build_model and solve_static refuse up front; InputError when a format
-/// cannot represent the supine model (nothing committed).
+/// cannot represent the supine model (nothing committed). The shapes and the iteration history go
+/// into `report` (report.html) when given.
 Prone2SupineOutcome prone2supine_into(const TetMesh& mesh, const JobConfig& config, const Prone2SupineRequest& request,
                                       const nlohmann::json& inputs, const std::string& command_line,
-                                      Progress& progress, OutputDir& out);
+                                      Progress& progress, OutputDir& out, RunReport* report = nullptr);
 
 }  // namespace tissuemesh::app

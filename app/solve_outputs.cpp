@@ -65,7 +65,7 @@ SolveResult run_solver(const Model& model, int threads, Progress& progress) {
   SolveOptions options;
   options.threads = threads;
   int attempt = 0;
-  options.on_step = [&](const StepRecord& s) { stage.note(step_line(s, ++attempt)); };
+  options.on_step = [&](const StepRecord& s) { stage.note(step_line(s, ++attempt), s.accepted ? s.load_fraction : s.load_fraction - s.increment); };
   SolveResult r = solve_static(model, options);
   stage.note(std::to_string(r.free_dofs) + " free dofs, " + r.linear_solver + " (" +
              std::to_string(r.factorisations) + " factorisations, " + std::to_string(r.linear_iterations) +
@@ -219,7 +219,7 @@ std::string summary_text(const nlohmann::json& record) {
 
 nlohmann::json solve_into(const Model& model, const JobConfig& config, const nlohmann::json& inputs,
                           const std::string& command_line, Progress& progress, OutputDir& out, SolveResult* result,
-                          int threads) {
+                          int threads, RunReport* report) {
   const SolveResult r = run_solver(model, threads, progress);
   const double mm_per_length = 1.0 / length_from_mm(model.units, 1.0);
   CellFields fields;
@@ -256,6 +256,12 @@ nlohmann::json solve_into(const Model& model, const JobConfig& config, const nlo
   require_finite(record, "");
   write_text_file(out.stage("solve.json"), record.dump(2) + "\n");
   std::cout << summary_text(record);
+  if (report) {
+    std::vector<Eigen::Vector3d> u_mm(r.displacements.size());
+    for (std::size_t i = 0; i < u_mm.size(); ++i) u_mm[i] = r.displacements[i] * mm_per_length;
+    report->add_solve(model, u_mm, record, "deformed by gravity");
+    report->add_table("Solve summary", summary_text(record));
+  }
   if (result) *result = r;
   return record;
 }

@@ -17,6 +17,7 @@
 //   reaction and weight in N and their relative imbalance) + outputs.
 #pragma once
 
+#include "app/html_outputs.h"
 #include "app/job_config.h"
 #include "core/model.h"
 #include "core/output_dir.h"
@@ -44,7 +45,8 @@ void require_finite(const nlohmann::json& j, const std::string& where);
 /// Solves `model` under its gravity with solve_static (settings: model.analysis) in a progress
 /// stage "solve (built-in, <tet4|tet10>, N dofs)" with one note per attempted load increment,
 /// stages DIR/solution.vtu and DIR/solve.json (header comment) into `out`, prints a summary and
-/// returns the record (solve.json's content). Does not commit `out`. When `result` is given it
+/// returns the record (solve.json's content). Does not commit `out`. The displacement and the
+/// residual history go into `report` (report.html) when given. When `result` is given it
 /// receives the solver's result (e.g. for a CalculiX check of the same solve). `threads`: assembly
 /// threads (0 = $OMP_NUM_THREADS, else all processors).
 ///
@@ -56,6 +58,6 @@ void require_finite(const nlohmann::json& j, const std::string& where);
 /// element), and std::logic_error when a result is not finite (a solver bug; nothing is written).
 nlohmann::json solve_into(const Model& model, const JobConfig& config, const nlohmann::json& inputs,
                           const std::string& command_line, Progress& progress, OutputDir& out,
-                          SolveResult* result = nullptr, int threads = 0);
+                          SolveResult* result = nullptr, int threads = 0, RunReport* report = nullptr);
 
 }  // namespace tissuemesh::app

@@ -257,7 +257,7 @@ void write_sample(const fs::path& dir, const Model& base, const JobConfig& confi
 }
 
 int write_results(const fs::path& dir, const Model& base, const SweepSpec& spec, const SweepLandmarks& landmarks,
-                  const std::vector<SweepSample>& design) {
+                  const std::vector<SweepSample>& design, RunReport* report) {
   std::vector<nlohmann::json> rows;
   int missing = 0;
   for (const SweepSample& s : design) {
@@ -429,6 +429,12 @@ int write_results(const fs::path& dir, const Model& base, const SweepSpec& spec,
                                    "Jansen 1999 estimators over the complete base points"}};
   write_atomically(dir / "summary.json", summary.dump(2) + "\n");
   write_atomically(dir / "summary.txt", text);
+  if (report && report->enabled()) {
+    report->add_mesh_view(corner_mesh(base));
+    report->add_sweep_summary(summary);
+    report->add_table("Sweep summary (summary.txt)", text);
+    write_atomically(dir / "report.html", report->html());
+  }
   return missing;
 }
 

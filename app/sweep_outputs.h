@@ -14,6 +14,7 @@
 //                          written from the samples once all are there (or by --merge)
 #pragma once
 
+#include "app/html_outputs.h"
 #include "app/job_config.h"
 #include "core/model.h"
 #include "workflows/landmarks.h"
@@ -56,8 +57,9 @@ void write_sample(const std::filesystem::path& dir, const Model& base, const Job
                   const SweepLandmarks& landmarks, const SweepSample& sample, const SampleOutcome& outcome);
 
 /// Writes results.csv, results.jsonl, summary.json, summary.txt and plots/ from the samples in DIR.
-/// Returns the number of design samples missing (the files then hold the finished ones).
+/// Returns the number of design samples missing (the files then hold the finished ones). With
+/// `report`, also report.html: the base mesh, the sensitivity of each output, summary.txt.
 int write_results(const std::filesystem::path& dir, const Model& base, const SweepSpec& spec,
-                  const SweepLandmarks& landmarks, const std::vector<SweepSample>& design);
+                  const SweepLandmarks& landmarks, const std::vector<SweepSample>& design, RunReport* report = nullptr);
 
 }  // namespace tissuemesh::app

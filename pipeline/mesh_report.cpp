@@ -398,7 +398,8 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
     const Eigen::Vector3d &e = r.approach->entry(), &c = r.approach->target_centroid();
     j["approach"] = {{"entry_mm", {e.x(), e.y(), e.z()}},
                      {"target_centroid_mm", {c.x(), c.y(), c.z()}},
-                     {"target_radius_mm", r.approach->target_radius_mm()}};
+                     {"target_radius_mm", r.approach->target_radius_mm()},
+                     {"corridor_radius_mm", r.approach->params().corridor_radius_mm}};
     if (r.grading)
       j["approach"]["measured"] = {{"inside_mean_edge_mm", r.grading->inside_mean_edge_mm},
                                    {"outside_mean_edge_mm", r.grading->outside_mean_edge_mm},

@@ -186,7 +186,7 @@ std::string tissue_color(const std::string& name, int id) {
   if (name == "tumor" || name == "tumour") return "#6a3dc0";
   if (name == "skin") return "#f2a277";
   if (name == "muscle" || name == "pectoral_muscle") return "#b8322a";
-  static const char* palette[] = {"#4477aa", "#66ccee", "#228833", "#ccbb44", "#ee6677", "#aa3377", "#bbbbbb", "#117733"};
+  static const char* palette[] = {"#4477aa", "#66ccee", "#22883c", "#ccbb44", "#ee6677", "#aa3377", "#bbbbbb", "#11773c"};
   return palette[static_cast<std::size_t>(id > 0 ? id - 1 : 0) % 8];
 }
 

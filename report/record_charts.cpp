@@ -74,14 +74,14 @@ void add_mesh_record_charts(HtmlReport& report, const nlohmann::json& record) {
     // Alqaoud et al., Table 1: the decimated surfaces of 21K and 2.1K vertices.
     ChartSpec angles{"table1_angles", "Table 1: triangle angles (higher is better)", "bar", "", "deg", false, false,
                      {"average min angle", "min angle"}, {}};
-    angles.datasets = {{"this run", {number(q["average_min_angle_deg"]), number(q["min_angle_deg"])}, "#228833"},
+    angles.datasets = {{"this run", {number(q["average_min_angle_deg"]), number(q["min_angle_deg"])}, "#22883c"},
                        {"paper 21K", {49.0487, 26.5}, "#bbbbbb"},
-                       {"paper 2.1K", {48.0243, 28.5458}, "#777777"}};
+                       {"paper 2.1K", {48.0243, 28.5458}, "#7a7a7a"}};
     ChartSpec shape{"table1_shape", "Table 1: triangle shape quality Q (1 = equilateral)", "bar", "", "Q", false, false,
                     {"Q average", "Q min"}, {}};
-    shape.datasets = {{"this run", {number(q["q_average"]), number(q["q_min"])}, "#228833"},
+    shape.datasets = {{"this run", {number(q["q_average"]), number(q["q_min"])}, "#22883c"},
                       {"paper 21K", {0.860981, 0.412079}, "#bbbbbb"},
-                      {"paper 2.1K", {0.848394, 0.486425}, "#777777"}};
+                      {"paper 2.1K", {0.848394, 0.486425}, "#7a7a7a"}};
     report.add_chart(angles);
     report.add_chart(shape);
   }
@@ -120,7 +120,7 @@ void add_prone2supine_record_charts(HtmlReport& report, const nlohmann::json& re
   ChartSpec c{"reference_iterations", "Reference state: prone shape mismatch per forward solve", "line",
               "forward solve (0 = naive reversal)", "max node mismatch (mm)", true, false, {}, {}};
   ChartDataset d{"mismatch", {}, "#aa3377"};
-  ChartDataset tol{"tolerance", {}, "#999999"};
+  ChartDataset tol{"tolerance", {}, "#9a9a9a"};
   for (const auto& it : ref["iterations"]) {
     c.labels.push_back(std::to_string(it.value("iteration", 0)));
     d.values.push_back(number(it.value("mismatch_mm", nlohmann::json())));
@@ -140,7 +140,7 @@ void add_sweep_summary_charts(HtmlReport& report, const nlohmann::json& summary)
     ChartSpec c{"sensitivity_" + std::to_string(++n), "Sensitivity of " + name, "bar", "parameter",
                 "index (-1 to 1)", false, false, {}, {}};
     ChartDataset src{"standardised regression coefficient", {}, "#4477aa"};
-    ChartDataset first{"Sobol' first order", {}, "#228833"};
+    ChartDataset first{"Sobol' first order", {}, "#22883c"};
     ChartDataset total{"Sobol' total", {}, "#ccbb44"};
     for (const auto& [parameter, value] : o["src"].items()) {
       c.labels.push_back(parameter);

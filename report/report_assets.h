@@ -1,5 +1,5 @@
 // The browser libraries report.html inlines, read at write time from the Debian packages:
-// libjs-three (three.min.js and examples/js/controls/OrbitControls.js, three.js r111) and
+// libjs-three (three.min.js and the OrbitControls.js of its examples, three.js r111) and
 // libjs-chart.js (chart.min.js, Chart.js 3.9). Their folder is /usr/share/javascript unless the
 // environment variable TISSUEMESH_JS_DIR names another one with the same layout. The page's own
 // script and style are compiled in.

@@ -25,6 +25,9 @@ PACKAGES=(
   python3 python3-yaml python3-meshio           # repository checks; meshio reads our VTU files back
   slurm-wlm munge                               # a real single-node Slurm for the sweep test
                                                 #   (tests/slurm/local_slurm.sh starts it)
+  libjs-three libjs-chart.js                    # three.js and Chart.js, inlined into report.html
+  chromium fonts-dejavu-core python3-pil        # headless browser test of report.html (PIL reads
+                                                #   its screenshot)
 )
 
 missing=()

@@ -68,7 +68,7 @@ TEST_F(Check, CalculixAndBuiltInAgreeOnTheBlock) {
   for (const char* f : {"check.json", "calculix/model.inp", "calculix/model.dat", "calculix/model.log"})
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
   for (const std::string& f : files_below(dir / "out"))
-    EXPECT_TRUE(f == "check.json" || f.rfind("calculix/", 0) == 0) << "unexpected output " << f;
+    EXPECT_TRUE(f == "check.json" || f == "report.html" || f.rfind("calculix/", 0) == 0) << "unexpected output " << f;
 
   const auto record = nlohmann::json::parse(read_file(dir / "out/check.json"));
   const auto& c = record["comparison"];
@@ -154,7 +154,7 @@ TEST_F(Check, TetgenMeshesTheSameGeometryAndMovesTheTumorAlike) {
   std::cout << r.out;
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const std::string& f : files_below(dir / "out"))
-    EXPECT_TRUE(f == "check.json" || f == "mesh_tetgen.vtu") << "unexpected output " << f;
+    EXPECT_TRUE(f == "check.json" || f == "report.html" || f == "mesh_tetgen.vtu") << "unexpected output " << f;
   // Read back independently of the writer's caller: same tissues, conforming, positive tets.
   const TetMesh tg = read_vtu((dir / "out/mesh_tetgen.vtu").string());
   EXPECT_EQ(tg.tissue_names, test::block_mesh().tissue_names);
@@ -235,7 +235,7 @@ TEST_F(Check, GmshComputesTheSameGammaAndSicnAsWeDoOnEveryTet) {
   std::cout << r.out;
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const std::string& f : files_below(dir / "out"))
-    EXPECT_TRUE(f == "check.json" || f == "quality_gmsh.pos") << "unexpected output " << f;
+    EXPECT_TRUE(f == "check.json" || f == "report.html" || f == "quality_gmsh.pos") << "unexpected output " << f;
   const auto record = nlohmann::json::parse(read_file(dir / "out/check.json"));
   EXPECT_TRUE(record["agree"].get<bool>());
   EXPECT_LE(record["max_gamma_difference"].get<double>(), test::kGmshPrintedQualityAbs);

@@ -51,9 +51,14 @@ TEST(Cli, MeshWritesMeshReportAndRecord) {
   write_spheres_config(dir / "spheres.yaml");
   const auto r = run_cli("mesh spheres.nii.gz -c spheres.yaml -o out", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(files_below(dir / "out"), (std::vector<std::string>{"mesh.vtu", "report.json", "report.txt"}));
+  EXPECT_EQ(files_below(dir / "out"),
+            (std::vector<std::string>{"mesh.vtu", "report.html", "report.json", "report.txt"}));
   // One progress line per stage with its time.
   EXPECT_NE(r.out.find("refine (CGAL Mesh_3) done in"), std::string::npos) << r.out;
+  // Not a terminal: plain lines, never a bar's carriage returns.
+  EXPECT_EQ(r.out.find('\r'), std::string::npos);
+  ASSERT_EQ(run_cli("mesh spheres.nii.gz -c spheres.yaml -o plain --no-html", dir).exit_code, 0);
+  EXPECT_EQ(files_below(dir / "plain"), (std::vector<std::string>{"mesh.vtu", "report.json", "report.txt"}));
   const auto report = nlohmann::json::parse(read_file(dir / "out/report.json"));
   EXPECT_TRUE(report["result"]["conforming"].get<bool>());
   EXPECT_GT(report["result"]["tets"].get<int>(), 1000);

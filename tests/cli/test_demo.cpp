@@ -23,7 +23,7 @@ namespace {
 /// Every file the demo writes besides calculix/ (whose files are CalculiX's own).
 std::vector<std::string> demo_files(bool with_check) {
   std::vector<std::string> files{"export.json", "mesh.vtu",       "model.feb",   "model.inp",  "model.msh",
-                                 "model.scn",   "model.vtk",      "model.vtu",   "phantom.nii.gz", "report.json",
+                                 "model.scn",   "model.vtk",      "model.vtu",   "phantom.nii.gz", "report.html", "report.json",
                                  "report.txt",  "solution.vtu",   "solve.json"};
   if (with_check) files.insert(files.begin(), "check.json");
   return files;

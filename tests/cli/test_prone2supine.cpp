@@ -157,7 +157,7 @@ TEST(Prone2Supine, RecordAndFilesAreCompleteAndFinite) {
   const Case& c = the_case();
   ASSERT_EQ(c.run.exit_code, 0) << c.run.err;
   for (const char* f : {"reference.vtu", "supine.vtu", "prone_check.vtu", "supine_model.feb", "supine_model.inp",
-                        "supine_model.scn", "supine_model.vtk", "points.csv", "prone2supine.json"})
+                        "supine_model.scn", "supine_model.vtk", "points.csv", "prone2supine.json", "report.html"})
     EXPECT_TRUE(std::filesystem::exists(c.dir / "p2s" / f)) << f;
   const std::string text = read_file((c.dir / "p2s/prone2supine.json").string());
   expect_no_nan_text(text);

@@ -10,6 +10,7 @@
 #include "support/tolerances.h"
 
 #include <gtest/gtest.h>
+#include <regex>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
@@ -99,11 +100,25 @@ std::vector<Eigen::Vector3d> points(vtkUnstructuredGrid* grid) {
 
 }  // namespace
 
+TEST_F(Solve, ATerminalSeesALiveProgressBar) {
+  // bsdutils' script(1) runs the command on a pseudo-terminal, as a user's shell would.
+  if (std::system("command -v script > /dev/null 2>&1") != 0) GTEST_SKIP() << "script(1) not installed";
+  const std::string cfg = config("block");
+  const std::string cmd = "cd '" + dir.string() + "' && TERM=xterm script -qec '" + std::string(TISSUEMESH_EXE) +
+                          " solve block.vtu -c " + cfg + " -o out --no-html' /dev/null > tty.txt 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_file(dir / "tty.txt");
+  const std::string out = read_file(dir / "tty.txt");
+  EXPECT_NE(out.find("\r  [########################] 100%"), std::string::npos) << out;  // the last increment
+  // No plain note line ("    0.20 s  increment 1: ...") for the increments: the bar replaces them.
+  EXPECT_FALSE(std::regex_search(out, std::regex("\n +[0-9.]+ s  increment 1: load"))) << out;
+  EXPECT_NE(out.find("solve (built-in, tet4"), std::string::npos) << out;
+}
+
 TEST_F(Solve, WritesSolutionInTheModelNodeOrderAndABalancedRecord) {
   const std::string cfg = config("block");
   const auto r = run_cli("solve block.vtu -c " + cfg + " -o out", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
-  EXPECT_EQ(files_below(dir / "out"), (std::vector<std::string>{"solution.vtu", "solve.json"}));
+  EXPECT_EQ(files_below(dir / "out"), (std::vector<std::string>{"report.html", "solution.vtu", "solve.json"}));
   EXPECT_NE(r.out.find("> solve (built-in, tet4, "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("increment 1: load "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("wrote "), std::string::npos) << r.out;
@@ -260,7 +275,7 @@ TEST_F(Solve, NonConvergenceWritesTheLastAcceptedStateAndExitsOne) {
   EXPECT_NE(r.err.find("tissuemesh solve: error: did not converge: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("load fraction 0 reached; see "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("solve.json"), std::string::npos) << r.err;
-  EXPECT_EQ(files_below(dir / "out"), (std::vector<std::string>{"solution.vtu", "solve.json"}));
+  EXPECT_EQ(files_below(dir / "out"), (std::vector<std::string>{"report.html", "solution.vtu", "solve.json"}));
 
   const std::string text = read_file(dir / "out/solve.json");
   expect_no_nan_text(text);

@@ -182,6 +182,10 @@ TEST(Sweep, SobolDesignReportsIndicesAndPlots) {
   EXPECT_GT(max_u["sobol_total"]["materials.breast.mu"].get<double>(),
             max_u["sobol_total"]["materials.tumor.density"].get<double>());
   EXPECT_TRUE(std::filesystem::exists(f.dir / "sobol/plots/max_displacement_mm__materials.breast.mu.svg"));
+  // report.html plots the same indices: the page's data holds the first output's Sobol' totals.
+  const std::string page = read_file((f.dir / "sobol/report.html").string());
+  EXPECT_NE(page.find("\"Sensitivity of max_displacement_mm\""), std::string::npos);
+  EXPECT_NE(page.find("\"Sobol' total\""), std::string::npos);
 }
 
 TEST(Sweep, BadSweepFilesAreRefusedByName) {
