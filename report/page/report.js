@@ -89,16 +89,21 @@
     var center = new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2);
     var size = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
 
-    // Multisampling is free on a GPU but dear in a software renderer (SwiftShader, e.g. headless).
-    var software = false;
-    try {
-      var probe = document.createElement('canvas').getContext('webgl');
-      var info = probe && probe.getExtension('WEBGL_debug_renderer_info');
-      software = !!info && /swiftshader|llvmpipe|software/i.test(probe.getParameter(info.UNMASKED_RENDERER_WEBGL));
-      var lose = probe && probe.getExtension('WEBGL_lose_context');
-      if (lose) lose.loseContext();
-    } catch (e) { software = false; }
-    var renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: !software, preserveDrawingBuffer: true });
+    // Multisampling is free on a GPU but dear in a software renderer (SwiftShader, e.g. headless):
+    // the first context says which one this is, and a GPU gets a fresh canvas with antialiasing.
+    var params = { canvas: canvas, antialias: false, preserveDrawingBuffer: true };
+    var renderer = new THREE.WebGLRenderer(params);
+    var gl = renderer.getContext(), info = gl.getExtension('WEBGL_debug_renderer_info');
+    var software = !info || /swiftshader|llvmpipe|software/i.test(gl.getParameter(info.UNMASKED_RENDERER_WEBGL));
+    if (!software) {
+      renderer.dispose();
+      var fresh = canvas.cloneNode(false);
+      canvas.parentNode.replaceChild(fresh, canvas);
+      canvas = fresh;
+      params.canvas = canvas;
+      params.antialias = true;
+      renderer = new THREE.WebGLRenderer(params);
+    }
     renderer.setPixelRatio(window.devicePixelRatio || 1);
     renderer.setClearColor(0xf2f4f7, 1);
     renderer.localClippingEnabled = true;
