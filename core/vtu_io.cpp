@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "core/memory_budget.h"
+#include "core/vtk_xml_guard.h"
 #include "core/vtk_grid_file.h"
 
 #include <vtkCellArray.h>
@@ -20,8 +21,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 
 namespace tissuemesh {
@@ -82,31 +81,6 @@ void require_mesh_memory(vtkXMLUnstructuredGridReader& reader, const std::string
                  std::to_string(points) + " points, " + std::to_string(cells) + " cells");
 }
 
-// VTK 9.1's XML reader, reporting a cell-data array shorter than the cell count, names the piece's
-// <PointData> element in its message and crashes (a null pointer) when the piece has none. Files
-// VTK writes always have one; for any other file the text is checked, and one without is given an
-// empty <PointData/> before each <CellData> and read from memory. Returns the text to read, or ""
-// when the file can be read as it is.
-std::string text_with_point_data(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string text, chunk(1 << 16, '\0');
-  std::size_t cell_data = std::string::npos;
-  while (cell_data == std::string::npos) {
-    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-    if (in.gcount() <= 0) break;
-    text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
-    cell_data = text.find("<CellData");
-  }
-  if (cell_data == std::string::npos || text.rfind("<PointData", cell_data) != std::string::npos) return "";
-  text.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  const std::string empty = "<PointData></PointData>";
-  for (std::size_t at = text.find("<CellData"); at != std::string::npos;
-       at = text.find("<CellData", at + empty.size() + 1)) {
-    text.insert(at, empty);
-  }
-  return text;
-}
-
 // Tissue ids are 1-based indices into the tissue names: a finite whole number in [1, 2^31).
 int tissue_id_of(double value, vtkIdType cell, const std::string& path) {
   if (!(value >= 1.0 && value <= static_cast<double>(std::numeric_limits<int>::max())) ||
@@ -124,7 +98,7 @@ TetMesh read_vtu(const std::string& path) {
   vtkNew<vtkXMLUnstructuredGridReader> reader;
   if (!reader->CanReadFile(path.c_str()))
     throw InputError(path + ": not a VTK XML unstructured grid (.vtu) file");
-  const std::string patched = text_with_point_data(path);
+  const std::string patched = vtk_xml_text_to_read(path);
   if (patched.empty()) {
     reader->SetFileName(path.c_str());
   } else {
