@@ -302,10 +302,17 @@ class NiftiHeaderBytes {
     gzFile file = gzopen(path.c_str(), "rb");
     if (file == nullptr) throw InputError(path + ": cannot open file");
     got_ = std::max(gzread(file, bytes_, sizeof bytes_), 0);
+    compressed_ = gzdirect(file) == 0;
+    int code = Z_OK;
+    const char* message = gzerror(file, &code);
+    if (code != Z_OK && code != Z_STREAM_END && message != nullptr) zlib_error_ = message;
     gzclose(file);
     swapped_ = get<std::int32_t>(0) != 348 && get<std::int32_t>(0) != 540;
   }
   int got() const { return got_; }
+  bool compressed() const { return compressed_; }
+  /// zlib's complaint about a compressed file's first bytes ("" when none).
+  const std::string& zlib_error() const { return zlib_error_; }
   template <typename T>
   T get(int offset) const {
     unsigned char b[sizeof(T)];
@@ -323,6 +330,8 @@ class NiftiHeaderBytes {
   unsigned char bytes_[544] = {};
   int got_ = 0;
   bool swapped_ = false;
+  bool compressed_ = false;
+  std::string zlib_error_;
 };
 
 void require_nifti_header(const std::string& path) {
@@ -330,6 +339,12 @@ void require_nifti_header(const std::string& path) {
   const std::int32_t size = h.get<std::int32_t>(0);
   const bool nifti1 = h.got() >= 348 && size == 348 && h.text_at(344, "n+1", 4);
   const bool nifti2 = h.got() >= 540 && size == 540 && h.text_at(4, "n+2\0\r\n\032\n", 8);
+  if (h.compressed() && (h.got() < 348 || !h.zlib_error().empty())) {
+    throw InputError(path + ": gzip stream is truncated or corrupt (" +
+                     (h.zlib_error().empty() ? "it ends after " + std::to_string(h.got()) + " bytes"
+                                             : "zlib: " + h.zlib_error()) +
+                     ", before the end of the NIfTI header)");
+  }
   if (!nifti1 && !nifti2) {
     throw InputError(path + ": not a single-file NIfTI-1 or NIfTI-2 image (no n+1/n+2 header at " +
                      "its start" + (h.got() < 348 ? ", only " + std::to_string(h.got()) +
