@@ -71,16 +71,17 @@ fs::path resolve_preset(const std::string& preset, const std::string& config_pat
   return beside;  // load_yaml_file names it in the error
 }
 
-// Limits of what the solver and the writers handle, wider than any tissue: soft tissue has a
-// shear modulus of 0.1-100 kPa (bone ~100 MPa) and K/mu of 10-10^4. Outside them a value is almost
-// always a unit mistake, or (K/mu beyond 10^6, nu above ~0.4999998) so nearly incompressible that
-// the displacement-only elements lock and the tangent loses every digit.
-constexpr double kMinShearPa = 1.0, kMaxShearPa = 1e10, kMaxBulkToShear = 1e6;
+// Limits far wider than any tissue: soft tissue has a shear modulus of 0.1-100 kPa (bone ~100 MPa)
+// and K/mu of 10-10^4. Outside them a value is a unit mistake (1e-30 Pa), or (K/mu beyond 10^6, nu
+// above ~0.4999998) so nearly incompressible that the displacement-only elements lock and the
+// tangent loses every digit. The lower bound leaves room for deliberately over-soft test models
+// (0.05 Pa with K = 50 kPa: a prone-to-supine run that must stop unconverged).
+constexpr double kMinShearPa = 1e-3, kMaxShearPa = 1e10, kMaxBulkToShear = 1e6;
 
 void check_stiffness_range(const YamlMap& map, const MaterialSpec& m) {
   if (!(m.mu_Pa >= kMinShearPa && m.mu_Pa <= kMaxShearPa))
     throw InputError(map.here() + "shear modulus mu = " + format_quantity(m.mu_Pa, Dimension::Stress) +
-                     " is outside 1 Pa - 10 GPa (soft tissue: 0.1-100 kPa); check the unit");
+                     " is outside 1 mPa - 10 GPa (soft tissue: 0.1-100 kPa); check the unit");
   if (!(m.K_Pa / m.mu_Pa <= kMaxBulkToShear))
     throw InputError(map.here() + "K/mu = " + format_double("%.3g", m.K_Pa / m.mu_Pa) + " (nu = " +
                      format_double("%.9g", (3 * m.K_Pa - 2 * m.mu_Pa) / (6 * m.K_Pa + 2 * m.mu_Pa)) +
