@@ -50,7 +50,7 @@ status=0
 for t in "${TARGETS[@]}"; do
   log="$RUN/$t.log"
   execs=$(awk '/stat::number_of_executed_units/ {print $2}' "$log")
-  secs=$(awk '/stat::average_exec_per_sec/ {r=$2} /stat::number_of_executed_units/ {n=$2} END {if (r > 0) printf "%.0f", n / r}' "$log")
+  secs=$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log")
   rate=$(awk '/stat::average_exec_per_sec/ {print $2}' "$log")
   last=$(grep -E '^#[0-9]+' "$log" | tail -1)
   cov=$(sed -n 's/.*cov: \([0-9]*\).*/\1/p' <<< "$last")
