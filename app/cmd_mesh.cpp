@@ -6,6 +6,7 @@
 #include "core/errors.h"
 #include "core/output_dir.h"
 #include "image/image_io.h"
+#include "pipeline/mesh_memory.h"
 
 #include <filesystem>
 #include <iostream>
@@ -43,6 +44,7 @@ void add_mesh_command(CLI::App& cli, Invocation& run) {
         auto stage = progress.stage("read " + opt->labels);
         labels = read_label_image(opt->labels);
       }
+      require_mesh_memory(labels, config, opt->labels);
       const nlohmann::json inputs = {{"labels", std::filesystem::absolute(opt->labels).string()},
                                      {"labels_bytes", std::filesystem::file_size(opt->labels)},
                                      {"config", std::filesystem::absolute(opt->config).string()}};

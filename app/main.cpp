@@ -1,10 +1,12 @@
 // tissuemesh: segmented breast MRI -> multi-material finite-element models. See README.md.
 #include "app/cli_support.h"
 #include "app/commands.h"
+#include "app/interrupt_cleanup.h"
 #include "core/resources.h"
 
 int main(int argc, char** argv) {
   using namespace tissuemesh::app;
+  install_interrupt_cleanup();
   CLI::App cli{"tissuemesh " + tissuemesh::library_versions().at("tissuemesh") +
                ": segmented breast MRI -> conforming multi-material tetrahedral FE models\n"
                "for FEBio, Abaqus/CalculiX and SOFA.\n"

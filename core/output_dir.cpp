@@ -4,9 +4,34 @@
 
 #include <unistd.h>
 
+#include <mutex>
+#include <set>
+
 namespace fs = std::filesystem;
 
 namespace tissuemesh {
+namespace {
+
+// The OutputDirs alive in this process, for abandon_all(); the mutex also makes a commit and an
+// abandonment exclude each other.
+struct Registry {
+  std::mutex mutex;
+  std::set<OutputDir*> live;
+  bool abandoned = false;
+};
+
+Registry& registry() {
+  static Registry* r = new Registry;  // never destroyed: usable until the process ends
+  return *r;
+}
+
+// Removes `folder` and what is in it; retried because a thread may still be writing into it.
+void remove_tree(const fs::path& folder) {
+  std::error_code ec;
+  for (int attempt = 0; attempt < 5 && fs::exists(folder, ec); ++attempt) fs::remove_all(folder, ec);
+}
+
+}  // namespace
 
 OutputDir::OutputDir(const fs::path& target) : target_(target) {
   std::error_code ec;
@@ -23,9 +48,21 @@ OutputDir::OutputDir(const fs::path& target) : target_(target) {
   staging_ = target_ / (".tissuemesh-staging-" + std::to_string(::getpid()));
   fs::create_directories(staging_, ec);
   if (ec) throw OutputError(target_.string() + ": cannot write into output directory: " + ec.message());
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  if (r.abandoned) {
+    remove_tree(staging_);
+    throw OutputError(target_.string() + ": the run is being interrupted");
+  }
+  r.live.insert(this);
 }
 
 OutputDir::~OutputDir() {
+  {
+    Registry& r = registry();
+    std::lock_guard<std::mutex> lock(r.mutex);
+    r.live.erase(this);
+  }
   std::error_code ec;
   fs::remove_all(staging_, ec);
   // A folder we created for a run that failed would be a partial output too.
@@ -41,7 +78,21 @@ fs::path OutputDir::stage(const std::string& name) {
   return path;
 }
 
+void OutputDir::abandon_all() {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  r.abandoned = true;
+  for (OutputDir* dir : r.live) {
+    if (dir->committed_) continue;
+    remove_tree(dir->staging_);
+    std::error_code ec;
+    if (dir->created_target_ && fs::is_empty(dir->target_, ec)) fs::remove(dir->target_, ec);
+  }
+}
+
 void OutputDir::commit() {
+  std::lock_guard<std::mutex> lock(registry().mutex);
+  if (registry().abandoned) throw OutputError(target_.string() + ": the run was interrupted");
   // All or nothing: files already in the target that would be replaced are set aside first, and
   // put back if any move fails.
   std::vector<std::string> placed, set_aside;

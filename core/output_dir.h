@@ -31,6 +31,12 @@ class OutputDir {
   /// Moves every staged file into the target folder (replacing files of the same name).
   void commit();
 
+  /// Removes the staging folder of every OutputDir not yet committed, and each target folder such
+  /// a run created when it is empty: what an interrupted process must do before it exits (the
+  /// destructors do not run then). Callable from any thread while others work: a commit in
+  /// progress finishes first, and every OutputDir made afterwards is abandoned at once.
+  static void abandon_all();
+
  private:
   std::filesystem::path target_;
   std::filesystem::path staging_;

@@ -3,6 +3,8 @@
 #include "core/errors.h"
 
 #include <cmath>
+#include <filesystem>
+#include <set>
 #include <fstream>
 #include <sstream>
 
@@ -129,7 +131,10 @@ YAML::Node YamlMap::raw(const std::string& key) {
 std::vector<std::string> YamlMap::keys() const {
   std::vector<std::string> out;
   if (!node_.IsMap()) return out;
-  for (const auto& kv : node_) out.push_back(kv.first.as<std::string>());
+  for (const auto& kv : node_) {
+    if (!kv.first.IsScalar()) throw InputError(here() + "a key must be a name, not a list or a mapping");
+    out.push_back(kv.first.Scalar());
+  }
   return out;
 }
 
@@ -170,7 +175,51 @@ double YamlMap::in_range(const std::string& key, double fallback, double lo, dou
   return v;
 }
 
+namespace {
+
+// Real configs hold a few hundred nodes; far more means aliases that expand exponentially
+// ("billion laughs"), which every later walk over the document would pay for.
+constexpr std::size_t kMaxYamlNodes = 100000;
+
+// Walks the document once: counts nodes (aliases counted each time they are used) and refuses a
+// mapping that repeats a key, which yaml-cpp keeps silently (lookups see only the first value).
+void check_document(const YAML::Node& node, const std::string& path, std::size_t& count) {
+  if (++count > kMaxYamlNodes) {
+    throw InputError(path + ": more than " + std::to_string(kMaxYamlNodes) +
+                     " YAML nodes once aliases are expanded (nested anchors and aliases?); a " +
+                     "config holds a few hundred");
+  }
+  if (node.IsMap()) {
+    std::set<std::string> keys;
+    for (const auto& entry : node) {
+      if (!entry.first.IsScalar()) {
+        std::ostringstream msg;
+        msg << path << ": line " << entry.first.Mark().line + 1
+            << ": a key must be a name, not a list, a mapping or empty";
+        throw InputError(msg.str());
+      }
+      if (!keys.insert(entry.first.Scalar()).second) {
+        std::ostringstream msg;
+        msg << path << ": duplicate key '" << entry.first.Scalar() << "' at line "
+            << entry.first.Mark().line + 1 << " (each key may appear once in a mapping)";
+        throw InputError(msg.str());
+      }
+      check_document(entry.first, path, count);
+      check_document(entry.second, path, count);
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& item : node) check_document(item, path, count);
+  }
+}
+
+}  // namespace
+
 YAML::Node load_yaml_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw InputError(path + (std::filesystem::exists(path, ec) ? ": is not a regular file"
+                                                               : ": cannot open config file"));
+  }
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open config file");
   YAML::Node root;
@@ -181,8 +230,12 @@ YAML::Node load_yaml_file(const std::string& path) {
     msg << path << ": invalid YAML at line " << e.mark.line + 1 << ", column "
         << e.mark.column + 1 << ": " << e.msg;
     throw InputError(msg.str());
+  } catch (const YAML::Exception& e) {
+    throw InputError(path + ": invalid YAML: " + e.what());
   }
   if (!root.IsMap()) throw InputError(path + ": the config must be a mapping of keys");
+  std::size_t count = 0;
+  check_document(root, path, count);
   return root;
 }
 

@@ -62,8 +62,9 @@ class YamlMap {
   YAML::Node scalar(const std::string& key, const char* expected);
 };
 
-/// Loads a YAML file; throws InputError naming the file (missing, unreadable, or the parser's
-/// line/column on a syntax error). The top level must be a mapping.
+/// Loads a YAML file; throws InputError naming the file (missing, not a regular file, unreadable,
+/// the parser's line/column on a syntax error, a key repeated in a mapping with its line, or more
+/// than 100,000 nodes once aliases are expanded). The top level must be a mapping.
 YAML::Node load_yaml_file(const std::string& path);
 
 }  // namespace tissuemesh

@@ -5,6 +5,7 @@
 #include "image/image_header.h"
 
 #include "core/errors.h"
+#include "core/memory_budget.h"
 
 #include <algorithm>
 #include <cctype>
@@ -275,6 +276,21 @@ std::size_t voxel_type_bytes(VoxelType type) {
 
 Eigen::Matrix3d ras_lps_flip() { return Eigen::Vector3d(-1, -1, 1).asDiagonal(); }
 
+std::uint64_t checked_data_bytes(const std::array<int, 3>& dims, std::uint64_t components,
+                                 std::uint64_t value_bytes, const std::string& path) {
+  const std::string what = path + ": header sizes " + std::to_string(dims[0]) + " x " +
+                           std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
+                           " voxels x " + std::to_string(components) + " component(s) x " +
+                           std::to_string(value_bytes) + " bytes";
+  std::uint64_t bytes = value_bytes;
+  for (std::uint64_t factor : {static_cast<std::uint64_t>(dims[0]),
+                               static_cast<std::uint64_t>(dims[1]),
+                               static_cast<std::uint64_t>(dims[2]), components}) {
+    bytes = checked_multiply(bytes, factor, what);
+  }
+  return bytes;
+}
+
 void set_axis_steps(LabelImage& geometry, const Eigen::Matrix3d& axis_steps,
                     const std::string& what) {
   for (int c = 0; c < 3; ++c) {
@@ -395,6 +411,7 @@ ImageHeader read_nrrd_header(const std::string& path) {
         "NRRD header is not ended by a blank line and names no 'data file', so it holds no "
         "voxel data (truncated or corrupt)");
   }
+  checked_data_bytes(h.geometry.dims, h.components, voxel_type_bytes(h.type), path);
   return h;
 }
 
@@ -478,6 +495,7 @@ ImageHeader read_metaimage_header(const std::string& path) {
       if (h.data_offset < -1) f.fail("MetaImage HeaderSize must be -1 or at least 0");
     }
   }
+  checked_data_bytes(h.geometry.dims, h.components, voxel_type_bytes(h.type), path);
   return h;
 }
 

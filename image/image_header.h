@@ -30,6 +30,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -67,11 +68,17 @@ struct ImageHeader {
   std::int64_t data_offset = 0;  ///< byte offset of the data in data_file; -1: its last bytes
   std::int64_t compressed_size = -1;  ///< MetaImage CompressedDataSize, -1 when not given
 
-  /// Uncompressed size of the voxel data in bytes.
+  /// Uncompressed size of the voxel data in bytes. The parsers below have checked that it fits
+  /// in 64 bits.
   std::size_t data_bytes() const {
     return geometry.voxel_count() * static_cast<std::size_t>(components) * voxel_type_bytes(type);
   }
 };
+
+/// dims[0] x dims[1] x dims[2] x components x bytes per value, or InputError naming `path` and
+/// the header's sizes when the product overflows 64 bits.
+std::uint64_t checked_data_bytes(const std::array<int, 3>& dims, std::uint64_t components,
+                                 std::uint64_t value_bytes, const std::string& path);
 
 /// Parses the header of a .nrrd (attached data) or .nhdr (detached data) file.
 ImageHeader read_nrrd_header(const std::string& path);

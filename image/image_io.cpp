@@ -1,6 +1,7 @@
 #include "image/image_io.h"
 
 #include "core/errors.h"
+#include "core/memory_budget.h"
 #include "image/image_header.h"
 
 #include <vtkCommand.h>
@@ -154,6 +155,17 @@ void require_label_voxels(VoxelType type, int components, const std::string& pat
   }
 }
 
+// Reading holds the file's voxel values (VTK's buffer) and the int32 labels copied from them at
+// the same time; refused before either is allocated when that cannot fit.
+void require_read_memory(const std::array<int, 3>& dims, std::uint64_t value_bytes,
+                         const std::string& path) {
+  const std::uint64_t voxels = checked_data_bytes(dims, 1, 1, path);
+  const std::uint64_t bytes = checked_data_bytes(dims, 1, value_bytes + sizeof(std::int32_t), path);
+  require_memory(bytes, path + ": reading this label image",
+                 std::to_string(voxels) + " voxels of " + std::to_string(value_bytes) +
+                     " byte(s) each, plus 4-byte labels");
+}
+
 template <typename T>
 bool fits_int32(T v) {
   if constexpr (std::is_floating_point_v<T>) {
@@ -280,12 +292,110 @@ void require_data_present(const ImageHeader& h, const std::string& path) {
 
 // -------------------------------------------------------------------------------------- NIfTI
 
+// The leading bytes of a NIfTI file must be a single-file NIfTI-1 or NIfTI-2 header with a known
+// datatype, its bitpix, and 1-7 dimensions of at least one voxel each, checked before VTK sees the
+// file: vtkNIFTIImageReader reads anything else as an Analyze 7.5 header (or a .hdr/.img pair),
+// and crashes on some of those and on unknown datatypes. zlib reads plain and gzip files alike.
+class NiftiHeaderBytes {
+ public:
+  explicit NiftiHeaderBytes(const std::string& path) {
+    gzFile file = gzopen(path.c_str(), "rb");
+    if (file == nullptr) throw InputError(path + ": cannot open file");
+    got_ = std::max(gzread(file, bytes_, sizeof bytes_), 0);
+    compressed_ = gzdirect(file) == 0;
+    int code = Z_OK;
+    const char* message = gzerror(file, &code);
+    if (code != Z_OK && code != Z_STREAM_END && message != nullptr) zlib_error_ = message;
+    gzclose(file);
+    swapped_ = get<std::int32_t>(0) != 348 && get<std::int32_t>(0) != 540;
+  }
+  int got() const { return got_; }
+  bool compressed() const { return compressed_; }
+  /// zlib's complaint about a compressed file's first bytes ("" when none).
+  const std::string& zlib_error() const { return zlib_error_; }
+  template <typename T>
+  T get(int offset) const {
+    unsigned char b[sizeof(T)];
+    std::memcpy(b, bytes_ + offset, sizeof(T));
+    if (swapped_) std::reverse(b, b + sizeof(T));
+    T value;
+    std::memcpy(&value, b, sizeof(T));
+    return value;
+  }
+  bool text_at(int offset, const char* text, std::size_t n) const {
+    return std::memcmp(bytes_ + offset, text, n) == 0;
+  }
+
+ private:
+  unsigned char bytes_[544] = {};
+  int got_ = 0;
+  bool swapped_ = false;
+  bool compressed_ = false;
+  std::string zlib_error_;
+};
+
+void require_nifti_header(const std::string& path) {
+  const NiftiHeaderBytes h(path);
+  const std::int32_t size = h.get<std::int32_t>(0);
+  const bool nifti1 = h.got() >= 348 && size == 348 && h.text_at(344, "n+1", 4);
+  const bool nifti2 = h.got() >= 540 && size == 540 && h.text_at(4, "n+2\0\r\n\032\n", 8);
+  if (h.compressed() && (h.got() < 348 || !h.zlib_error().empty())) {
+    throw InputError(path + ": gzip stream is truncated or corrupt (" +
+                     (h.zlib_error().empty() ? "it ends after " + std::to_string(h.got()) + " bytes"
+                                             : "zlib: " + h.zlib_error()) +
+                     ", before the end of the NIfTI header)");
+  }
+  if (!nifti1 && !nifti2) {
+    throw InputError(path + ": not a single-file NIfTI-1 or NIfTI-2 image (no n+1/n+2 header at " +
+                     "its start" + (h.got() < 348 ? ", only " + std::to_string(h.got()) +
+                     " readable bytes" : std::string()) + "); .hdr/.img pairs and Analyze files " +
+                     "are not supported");
+  }
+  const int datatype = h.get<std::int16_t>(nifti1 ? 70 : 12);
+  const int bitpix = h.get<std::int16_t>(nifti1 ? 72 : 14);
+  static const std::pair<int, int> kTypes[] = {{2, 8},     {4, 16},    {8, 32},   {16, 32},
+                                               {64, 64},   {256, 8},   {512, 16}, {768, 32},
+                                               {1024, 64}, {1280, 64}};
+  const auto known = std::find_if(std::begin(kTypes), std::end(kTypes),
+                                  [&](const auto& t) { return t.first == datatype; });
+  if (known == std::end(kTypes) || known->second != bitpix) {
+    throw InputError(path + ": NIfTI datatype " + std::to_string(datatype) + " with bitpix " +
+                     std::to_string(bitpix) + " is not a supported scalar voxel type");
+  }
+  const std::int64_t ndim = nifti1 ? h.get<std::int16_t>(40) : h.get<std::int64_t>(16);
+  if (ndim < 1 || ndim > 7) {
+    throw InputError(path + ": NIfTI dim[0] = " + std::to_string(ndim) + " is not 1 to 7 dimensions");
+  }
+  for (int a = 1; a <= ndim; ++a) {
+    const std::int64_t n = nifti1 ? h.get<std::int16_t>(40 + 2 * a) : h.get<std::int64_t>(16 + 8 * a);
+    if (n < 1) {
+      throw InputError(path + ": NIfTI dim[" + std::to_string(a) + "] = " + std::to_string(n) +
+                       " is not a voxel count of at least 1");
+    }
+  }
+}
+
+// The header's spatial sizes, refused unless each fits an int (NIfTI-2 stores 64-bit sizes).
+std::array<int, 3> nifti_dims(vtkNIFTIImageHeader& h, const std::string& path) {
+  std::array<int, 3> dims{1, 1, 1};
+  for (int a = 0; a < 3 && a < h.GetDim(0); ++a) {
+    const vtkTypeInt64 n = h.GetDim(a + 1);
+    if (n <= 0 || n > std::numeric_limits<int>::max()) {
+      throw InputError(path + ": NIfTI dim[" + std::to_string(a + 1) + "] = " + std::to_string(n) +
+                       " is not a voxel count between 1 and " +
+                       std::to_string(std::numeric_limits<int>::max()));
+    }
+    dims[a] = static_cast<int>(n);
+  }
+  return dims;
+}
+
 // Geometry from the raw NIfTI header fields, following nifti1.h: sform (method 3) when
 // sform_code > 0, else qform (method 2), else pixdim (method 1). Computed here rather than taken
 // from vtkNIFTIImageReader's matrices, which are re-expressed for VTK's reversed slice order.
 LabelImage nifti_geometry(vtkNIFTIImageHeader& h, const std::string& path) {
   LabelImage g;
-  for (int a = 0; a < 3; ++a) g.dims[a] = static_cast<int>(h.GetDim(0) > a ? h.GetDim(a + 1) : 1);
+  g.dims = nifti_dims(h, path);
   const Eigen::Vector3d pixdim(h.GetPixDim(1), h.GetPixDim(2), h.GetPixDim(3));
   const int space_units = h.GetXYZTUnits() & 7;  // NIFTI_UNITS_METER 1, MM 2, MICRON 3
   const double mm = space_units == 1 ? 1000.0 : space_units == 3 ? 1e-3 : 1.0;
@@ -332,7 +442,32 @@ LabelImage nifti_geometry(vtkNIFTIImageHeader& h, const std::string& path) {
   return g;
 }
 
+// The voxel bytes the header promises, checked before VTK allocates for them: present in a .nii,
+// and in a .nii.gz a stream that inflates to at least header + data with a valid checksum.
+void require_nifti_data(vtkNIFTIImageHeader& h, const std::array<int, 3>& dims,
+                        const std::string& path) {
+  const std::uint64_t value_bytes = static_cast<std::uint64_t>(std::max(h.GetBitPix(), 8) / 8);
+  require_read_memory(dims, value_bytes, path);
+  const vtkTypeInt64 offset = h.GetVoxOffset();
+  if (offset < 0) {
+    throw InputError(path + ": NIfTI vox_offset " + std::to_string(offset) + " is negative");
+  }
+  const std::uint64_t end = static_cast<std::uint64_t>(offset) +
+                            checked_data_bytes(dims, 1, value_bytes, path);
+  const std::uintmax_t size = data_file_size(path, path);
+  if (has_extension(path, ".gz")) {
+    if (!stream_delivers(path, 0, size, end)) {
+      throw InputError(path + ": gzip stream is truncated or corrupt (it does not inflate to the " +
+                       std::to_string(end) + " bytes of header and voxel data expected)");
+    }
+  } else if (size < end) {
+    throw InputError(path + ": voxel data is truncated: the file holds " + std::to_string(size) +
+                     " bytes, header and voxel data need " + std::to_string(end));
+  }
+}
+
 LabelImage read_nifti(const std::string& path) {
+  require_nifti_header(path);
   vtkNew<vtkNIFTIImageReader> reader;
   reader->SetFileName(path.c_str());
   reader->TimeAsVectorOn();  // time points become components, which are then refused
@@ -353,6 +488,7 @@ LabelImage read_nifti(const std::string& path) {
                      ", scl_inter " + std::to_string(intercept) +
                      ") is set, so the stored values are not the labels");
   }
+  require_nifti_data(*header, nifti_dims(*header, path), path);
   LabelImage image = nifti_geometry(*header, path);
   run.data();
   labels_from_vtk(reader->GetOutput(), reader->GetQFac() < 0, image, path);
@@ -395,6 +531,7 @@ vtkStandardNewMacro(LayoutNrrdReader);
 LabelImage read_nrrd(const std::string& path) {
   ImageHeader h = read_nrrd_header(path);
   require_label_voxels(h.type, h.components, path);
+  require_read_memory(h.geometry.dims, voxel_type_bytes(h.type), path);
   require_data_present(h, path);
   vtkNew<LayoutNrrdReader> reader;
   reader->set_dims(h.geometry.dims);
@@ -409,6 +546,7 @@ LabelImage read_nrrd(const std::string& path) {
 LabelImage read_metaimage(const std::string& path) {
   ImageHeader h = read_metaimage_header(path);
   require_label_voxels(h.type, h.components, path);
+  require_read_memory(h.geometry.dims, voxel_type_bytes(h.type), path);
   require_data_present(h, path);
   vtkNew<vtkMetaImageReader> reader;
   reader->SetFileName(path.c_str());

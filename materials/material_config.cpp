@@ -1,6 +1,7 @@
 #include "materials/material_config.h"
 
 #include "core/errors.h"
+#include "core/number_format.h"
 #include "core/quantity.h"
 #include "materials/elastic_constants.h"
 
@@ -68,6 +69,24 @@ fs::path resolve_preset(const std::string& preset, const std::string& config_pat
   for (const char* dir : {TISSUEMESH_SOURCE_CONFIG_DIR, TISSUEMESH_INSTALLED_CONFIG_DIR})
     if (fs::exists(fs::path(dir) / p)) return fs::path(dir) / p;
   return beside;  // load_yaml_file names it in the error
+}
+
+// Limits far wider than any tissue: soft tissue has a shear modulus of 0.1-100 kPa (bone ~100 MPa)
+// and K/mu of 10-10^4. Outside them a value is a unit mistake (1e-30 Pa), or (K/mu beyond 10^6, nu
+// above ~0.4999998) so nearly incompressible that the displacement-only elements lock and the
+// tangent loses every digit. The lower bound leaves room for deliberately over-soft test models
+// (0.05 Pa with K = 50 kPa: a prone-to-supine run that must stop unconverged).
+constexpr double kMinShearPa = 1e-3, kMaxShearPa = 1e10, kMaxBulkToShear = 1e6;
+
+void check_stiffness_range(const YamlMap& map, const MaterialSpec& m) {
+  if (!(m.mu_Pa >= kMinShearPa && m.mu_Pa <= kMaxShearPa))
+    throw InputError(map.here() + "shear modulus mu = " + format_quantity(m.mu_Pa, Dimension::Stress) +
+                     " is outside 1 mPa - 10 GPa (soft tissue: 0.1-100 kPa); check the unit");
+  if (!(m.K_Pa / m.mu_Pa <= kMaxBulkToShear))
+    throw InputError(map.here() + "K/mu = " + format_double("%.3g", m.K_Pa / m.mu_Pa) + " (nu = " +
+                     format_double("%.9g", (3 * m.K_Pa - 2 * m.mu_Pa) / (6 * m.K_Pa + 2 * m.mu_Pa)) +
+                     ") is above 10^6: too close to incompressible for displacement elements; use nu <= 0.49999 "
+                     "(K/mu = 5e4) or less");
 }
 
 }  // namespace
@@ -146,6 +165,7 @@ MaterialSpec parse_material(YamlMap& map) {
     m.K_Pa = bulk_from(m.mu_Pa);
   }
 
+  check_stiffness_range(map, m);
   if (!map.has("density"))
     throw InputError(map.where("density") + ": required key is missing (e.g. 1000 kg/m^3; gravity needs mass)");
   m.density_kg_m3 = quantity(map, "density", Dimension::Density, 0.0);

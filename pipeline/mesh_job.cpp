@@ -1,10 +1,21 @@
 #include "pipeline/mesh_job.h"
 
+#include "core/errors.h"
+
+#include <algorithm>
+
 namespace tissuemesh {
 
 LabelImage tissue_id_image(const LabelImage& labels, const std::string& image_name, const TissueTable& tissues,
                            std::map<int, double>& voxel_volume_mm3, Progress& progress) {
   auto stage = progress.stage("check labels");
+  // An image one voxel thin along an axis gives CGAL Mesh_3 no facet to start from: it stops with
+  // no tetrahedra, after printing a warning of its own.
+  if (*std::min_element(labels.dims.begin(), labels.dims.end()) < 2) {
+    throw InputError(image_name + ": " + std::to_string(labels.dims[0]) + " x " +
+                     std::to_string(labels.dims[1]) + " x " + std::to_string(labels.dims[2]) +
+                     " voxels: a volume mesh needs at least 2 voxels along each axis");
+  }
   const auto counts = labels.label_counts();
   tissues.check_against(counts, image_name);
   for (const auto& [label, n] : counts) {

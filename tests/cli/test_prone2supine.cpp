@@ -82,7 +82,7 @@ struct Case {
     std::ofstream(dir / "supine.yaml") << std::regex_replace(text, std::regex("direction: prone"), "direction: supine");
     std::ofstream(dir / "naive.yaml") << text << "prone2supine: {max_iterations: 1}\n";
     soft_config = (dir / "soft.yaml").string();
-    std::ofstream(soft_config) << std::regex_replace(text, std::regex("mu: 150 Pa"), "mu: 0.01 Pa")
+    std::ofstream(soft_config) << std::regex_replace(text, std::regex("mu: 150 Pa"), "mu: 0.05 Pa")
                                << "prone2supine: {max_iterations: 3}\n";
 
     EXPECT_EQ(run_cli("demo -c coarse.yaml --skip-calculix -o truth", dir).exit_code, 0);
