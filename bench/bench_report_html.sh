@@ -28,5 +28,11 @@ print(json.loads(html.unescape(m.group(1)))["built_ms"])')
   times+=("$ms")
 done
 median=$(printf '%s\n' "${times[@]}" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}')
-echo "median: ${median} ms to open (built and drawn) over $runs runs; page $(wc -c < "$page") bytes"
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); chromium $(chromium --version 2>/dev/null | awk '{print $2}')"
+tets=$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["result"]["tets"])' "$work/demo/report.json")
+echo
+echo "| page | tets | size [MB] | open, median of $runs [ms] | runs [ms] |"
+echo "|---|---|---|---|---|"
+printf '| demo report.html | %s | %.1f | %.0f | %s |\n' "$tets" "$(awk -v b="$(wc -c < "$page")" 'BEGIN {print b / 1e6}')" "$median" \
+  "$(printf '%.0f, ' "${times[@]}" | sed 's/, $//')"
+echo
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); chromium $(chromium --version 2>/dev/null | awk '{print $2}'); load average $(cut -d' ' -f1-3 /proc/loadavg)"
