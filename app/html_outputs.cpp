@@ -12,29 +12,6 @@ namespace {
 
 Eigen::Vector3d vec(const nlohmann::json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
 
-/// Index of the tissue named tumour (either spelling), or -1.
-int tumour_index(const std::vector<std::string>& names) {
-  for (std::size_t i = 0; i < names.size(); ++i)
-    if (names[i] == "tumor" || names[i] == "tumour") return static_cast<int>(i);
-  return -1;
-}
-
-/// Volume-weighted centroid of tissue `index` (0-based) of `mesh` at `positions` (per mesh node).
-std::optional<Eigen::Vector3d> tissue_centroid(const TetMesh& mesh, int index, const std::vector<Eigen::Vector3d>& positions) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  double volume = 0;
-  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-    if (mesh.tissue_ids[t] != index + 1) continue;
-    const auto& c = mesh.tets[t];
-    const auto& p = [&](int k) -> const Eigen::Vector3d& { return positions[static_cast<std::size_t>(c[k])]; };
-    const double v = std::abs(signed_tet_volume(p(0), p(1), p(2), p(3)));
-    sum += v * (p(0) + p(1) + p(2) + p(3)) / 4.0;
-    volume += v;
-  }
-  if (volume <= 0) return std::nullopt;
-  return sum / volume;
-}
-
 void add_record_meta(HtmlReport& page, const nlohmann::json& record) {
   if (record.contains("versions")) {
     std::map<std::string, std::string> versions;
@@ -89,8 +66,7 @@ void RunReport::add_solve(const Model& model, const std::vector<Eigen::Vector3d>
   }
   scene.displacement_mm.assign(u_mm.begin(), u_mm.begin() + model.num_corner_nodes);
   scene.displacement_label = label;
-  const int tumour = tumour_index(mesh.tissue_names);
-  if (tumour >= 0) {
+  if (const int tumour = tumour_tissue_id(mesh.tissue_names)) {
     std::vector<Eigen::Vector3d> deformed(mesh.points.size());
     for (std::size_t i = 0; i < deformed.size(); ++i) deformed[i] = mesh.points[i] + scene.displacement_mm[i];
     const auto from = tissue_centroid(mesh, tumour, mesh.points), to = tissue_centroid(mesh, tumour, deformed);
@@ -118,8 +94,7 @@ void RunReport::add_prone2supine(const Model& model, const std::vector<Eigen::Ve
   ReportScene scene = scene_of_mesh(mesh);
   for (std::size_t i = 0; i < n; ++i) scene.displacement_mm.push_back(supine[i] - prone[i]);
   scene.displacement_label = "supine, coloured by the motion from prone";
-  const int tumour = tumour_index(mesh.tissue_names);
-  if (tumour >= 0) {
+  if (const int tumour = tumour_tissue_id(mesh.tissue_names)) {
     const auto a = tissue_centroid(mesh, tumour, prone), b = tissue_centroid(mesh, tumour, reference),
                c = tissue_centroid(mesh, tumour, supine);
     if (a && b && c) scene.paths.push_back({"tumour centroid prone -> reference -> supine", {*a, *b, *c}});

@@ -111,25 +111,31 @@ ReportScene scene_of_mesh(const TetMesh& mesh) {
     s.tet_min_dihedral_deg.push_back(static_cast<float>(va.min_dihedral_deg));
   }
   // The section starts through the tumour when there is one: what a user looks for first.
-  int tumour = 0;
-  for (std::size_t i = 0; i < mesh.tissue_names.size(); ++i)
-    if (mesh.tissue_names[i] == "tumor" || mesh.tissue_names[i] == "tumour") tumour = static_cast<int>(i + 1);
+  if (const int tumour = tumour_tissue_id(mesh.tissue_names)) s.clip_at_mm = tissue_centroid(mesh, tumour, mesh.points);
+  return s;
+}
+
+int tumour_tissue_id(const std::vector<std::string>& names) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == "tumor" || names[i] == "tumour") return static_cast<int>(i + 1);
+  return 0;
+}
+
+std::optional<Eigen::Vector3d> tissue_centroid(const TetMesh& mesh, int id, const std::vector<Eigen::Vector3d>& positions) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double volume = 0;
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-    if (mesh.tissue_ids[t] != tumour) continue;
+    if (mesh.tissue_ids[t] != id) continue;
     const auto& c = mesh.tets[t];
-    const auto& a = mesh.points[static_cast<std::size_t>(c[0])];
-    const double v = std::abs(signed_tet_volume(a, mesh.points[static_cast<std::size_t>(c[1])], mesh.points[static_cast<std::size_t>(c[2])],
-                                                mesh.points[static_cast<std::size_t>(c[3])]));
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 4; ++k) centroid += mesh.points[static_cast<std::size_t>(c[k])] / 4.0;
-    sum += v * centroid;
+    const auto p = [&](int k) -> const Eigen::Vector3d& { return positions[static_cast<std::size_t>(c[k])]; };
+    const double v = std::abs(signed_tet_volume(p(0), p(1), p(2), p(3)));
+    sum += v * (p(0) + p(1) + p(2) + p(3)) / 4.0;
     volume += v;
   }
-  if (volume > 0) s.clip_at_mm = sum / volume;
-  return s;
+  if (volume <= 0) return std::nullopt;
+  return sum / volume;
 }
+
 
 std::size_t scene_page_bytes(const ReportScene& s) {
   std::size_t bytes = base64_bytes(12 * s.nodes.size()) + base64_bytes(16 * s.tets.size()) +

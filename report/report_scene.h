@@ -54,6 +54,13 @@ struct ReportScene {
 /// 255 tissues.
 ReportScene scene_of_mesh(const TetMesh& mesh);
 
+/// 1-based id of the tissue named "tumor" or "tumour", or 0 when there is none.
+int tumour_tissue_id(const std::vector<std::string>& tissue_names);
+
+/// Volume-weighted centroid (mm) of tissue `id` (1-based) of `mesh` with its nodes at `positions`
+/// (one per mesh node); nullopt when the tissue has no volume.
+std::optional<Eigen::Vector3d> tissue_centroid(const TetMesh& mesh, int id, const std::vector<Eigen::Vector3d>& positions);
+
 /// Bytes the scene takes in the page (base64 arrays), for the size cap.
 std::size_t scene_page_bytes(const ReportScene& scene);
 
