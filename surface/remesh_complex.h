@@ -168,6 +168,16 @@ class RemeshComplex {
   using Vector3d = Eigen::Vector3d;
   enum class Kind : char { Surface, Curve, Corner };
 
+  /// A collapse, flip or relaxation move is refused when a triangle's normal turns by more than
+  /// this (cos 60 deg): it would fold the surface or leave the reference shape's tangent plane.
+  static constexpr double kMinNormalTurnCos = 0.5;
+  /// A closed junction loop keeps at least this many edges. Three would do topologically, but a
+  /// loop only a few voxel faces long (a sub-resolution contact, kept at its voxel corners by the
+  /// extraction) then becomes one triangle inscribed in a rectangle, obtuse with two angles under
+  /// 30 degrees (e.g. 29, 29 and 122 degrees on a 1.4 x 1.5 mm contact); four vertices evenly
+  /// spaced along it make a near-square of two near-right triangles.
+  static constexpr int kMinLoopEdges = 4;
+
   /// The approximation bound in force: the caller's floor, or a quarter of the edge length when
   /// that is larger (a coarse budget cannot follow the surface to within a voxel); grown by
   /// match_count when the budget cannot be met otherwise.
