@@ -14,14 +14,26 @@
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
+#include <vtkType.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
+#include <vtkZLibDataCompressor.h>
+#include <vtkLZ4DataCompressor.h>
+#include <vtkLZMADataCompressor.h>
+#include <vtkSmartPointer.h>
 #include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <cstring>
 #include <limits>
+#include <type_traits>
+#include <vector>
 
 namespace tissuemesh {
 
@@ -81,6 +93,106 @@ void require_mesh_memory(vtkXMLUnstructuredGridReader& reader, const std::string
                  std::to_string(points) + " points, " + std::to_string(cells) + " cells");
 }
 
+// The most nodes a VTK cell of fixed size has (the tri-quadratic hexahedron's 27): offsets that
+// declare more per cell on average are not a mesh.
+constexpr std::uint64_t kMaxNodesPerCell = 27;
+
+template <typename T>
+std::vector<std::uint64_t> offsets_as_read(const std::vector<unsigned char>& bytes, std::size_t n,
+                                           const std::string& path) {
+  std::vector<std::uint64_t> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    T v;
+    std::memcpy(&v, bytes.data() + i * sizeof(T), sizeof(T));
+    if constexpr (std::is_signed_v<T>) {
+      if (v < 0) throw InputError(path + ": cell offset " + std::to_string(i) + " is negative");
+    }
+    out[i] = static_cast<std::uint64_t>(v);
+  }
+  return out;
+}
+
+// Every piece's cell offsets, read with VTK's XML data parser on a stream of its own before the
+// reader reads the cells: vtkXMLUnstructuredDataReader allocates the connectivity array from the
+// last offset, unchecked, so one corrupt value asks for gigabytes. Refused: offsets that are not
+// integers, fewer than the cells, decreasing, or declaring more than kMaxNodesPerCell nodes per
+// cell. `text` is the file's text when it was patched (vtk_xml_guard.h), else "".
+void require_cell_offsets(const std::string& path, const std::string& text) {
+  std::ifstream file;
+  std::istringstream patched(text);
+  if (text.empty()) file.open(path, std::ios::binary);
+  std::istream& stream = text.empty() ? static_cast<std::istream&>(file) : patched;
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetStream(&stream);
+  if (!stream || parser->Parse() == 0) return;  // VTK's reader reports an unparsable file
+  vtkXMLDataElement* root = parser->GetRootElement();
+  vtkXMLDataElement* grid = root != nullptr ? root->FindNestedElementWithName("UnstructuredGrid") : nullptr;
+  if (grid == nullptr) return;
+  if (const char* compressor = root->GetAttribute("compressor")) {
+    vtkSmartPointer<vtkDataCompressor> c;
+    if (std::strcmp(compressor, "vtkZLibDataCompressor") == 0) c = vtkSmartPointer<vtkZLibDataCompressor>::New();
+    else if (std::strcmp(compressor, "vtkLZ4DataCompressor") == 0) c = vtkSmartPointer<vtkLZ4DataCompressor>::New();
+    else if (std::strcmp(compressor, "vtkLZMADataCompressor") == 0) c = vtkSmartPointer<vtkLZMADataCompressor>::New();
+    else return;  // VTK's reader refuses an unknown compressor
+    parser->SetCompressor(c);
+  }
+  for (int p = 0; p < grid->GetNumberOfNestedElements(); ++p) {
+    vtkXMLDataElement* piece = grid->GetNestedElement(p);
+    if (std::strcmp(piece->GetName(), "Piece") != 0) continue;
+    long long cells = 0;
+    piece->GetScalarAttribute("NumberOfCells", cells);
+    vtkXMLDataElement* cell_arrays = piece->FindNestedElementWithName("Cells");
+    if (cells <= 0 || cell_arrays == nullptr) continue;
+    vtkXMLDataElement* offsets =
+        cell_arrays->FindNestedElementWithNameAndAttribute("DataArray", "Name", "offsets");
+    if (offsets == nullptr) continue;  // VTK refuses a piece without offsets itself
+    int type = 0;
+    if (!offsets->GetWordTypeAttribute("type", type)) {
+      throw InputError(path + ": the cell offsets array has no valid type");
+    }
+    const int size = vtkAbstractArray::GetDataTypeSize(type);
+    const bool integer = type == VTK_TYPE_INT8 || type == VTK_TYPE_UINT8 || type == VTK_TYPE_INT16 ||
+                         type == VTK_TYPE_UINT16 || type == VTK_TYPE_INT32 || type == VTK_TYPE_UINT32 ||
+                         type == VTK_TYPE_INT64 || type == VTK_TYPE_UINT64;
+    if (!integer) throw InputError(path + ": the cell offsets array is not of an integer type");
+    const auto n = static_cast<std::size_t>(cells);
+    std::vector<unsigned char> bytes(n * static_cast<std::size_t>(size));
+    std::size_t read = 0;
+    long long appended = 0;
+    if (offsets->GetScalarAttribute("offset", appended)) {
+      read = parser->ReadAppendedData(appended, bytes.data(), 0, n, type);
+    } else {
+      const char* format = offsets->GetAttribute("format");
+      const int ascii = format != nullptr && std::strcmp(format, "ascii") == 0;
+      read = parser->ReadInlineData(offsets, ascii, bytes.data(), 0, n, type);
+    }
+    if (read < n) {
+      throw InputError(path + ": the cell offsets array holds " + std::to_string(read) +
+                       " values for " + std::to_string(n) + " cells");
+    }
+    std::vector<std::uint64_t> values;
+    switch (type) {
+      case VTK_TYPE_INT8: values = offsets_as_read<std::int8_t>(bytes, n, path); break;
+      case VTK_TYPE_UINT8: values = offsets_as_read<std::uint8_t>(bytes, n, path); break;
+      case VTK_TYPE_INT16: values = offsets_as_read<std::int16_t>(bytes, n, path); break;
+      case VTK_TYPE_UINT16: values = offsets_as_read<std::uint16_t>(bytes, n, path); break;
+      case VTK_TYPE_INT32: values = offsets_as_read<std::int32_t>(bytes, n, path); break;
+      case VTK_TYPE_UINT32: values = offsets_as_read<std::uint32_t>(bytes, n, path); break;
+      case VTK_TYPE_INT64: values = offsets_as_read<std::int64_t>(bytes, n, path); break;
+      default: values = offsets_as_read<std::uint64_t>(bytes, n, path); break;
+    }
+    for (std::size_t i = 1; i < n; ++i) {
+      if (values[i] < values[i - 1]) {
+        throw InputError(path + ": cell offsets decrease at cell " + std::to_string(i));
+      }
+    }
+    if (values.back() > n * kMaxNodesPerCell) {
+      throw InputError(path + ": the cell offsets declare " + std::to_string(values.back()) +
+                       " node indices for " + std::to_string(n) + " cells (corrupt offsets)");
+    }
+  }
+}
+
 // Tissue ids are 1-based indices into the tissue names: a finite whole number in [1, 2^31).
 int tissue_id_of(double value, vtkIdType cell, const std::string& path) {
   if (!(value >= 1.0 && value <= static_cast<double>(std::numeric_limits<int>::max())) ||
@@ -108,6 +220,7 @@ TetMesh read_vtu(const std::string& path) {
   reader->UpdateInformation();
   reader->SetupUpdateExtent(0, 1, 0);  // totals the pieces' declared sizes, reads no data
   require_mesh_memory(*reader, path);
+  require_cell_offsets(path, patched);
   reader->Update();
   vtkUnstructuredGrid* grid = reader->GetOutput();
   if (reader->GetErrorCode() != 0 || grid == nullptr || grid->GetNumberOfPoints() == 0)

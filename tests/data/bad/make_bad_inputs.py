@@ -168,6 +168,8 @@ def main():
     write("truncated.vtu", vtu()[:300])
     write("no-tissue-id.vtu", vtu(cell_data=""))
     write("hexahedron.vtu", vtu(types="12", connectivity="0 1 2 3 4 5 6 7", offsets="8", points=8, ids="1"))
+    write("huge-cell-offset.vtu", vtu(offsets="4 8589934600"))
+    write("decreasing-cell-offsets.vtu", vtu(offsets="8 4"))
     write("nan-point.vtu", vtu(coords="nan 0 0  1 0 0  0 1 0  0 0 1  1 1 1"))
     write("bad-node-index.vtu", vtu(connectivity="0 1 2 3  1 2 3 99"))
     write("huge-tissue-id.vtu", vtu(ids="1 2000000000"))
