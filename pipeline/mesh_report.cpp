@@ -3,6 +3,7 @@
 #include "quality/conformity.h"
 #include "quality/mesh_quality.h"
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -393,6 +394,10 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
       j["remesh"]["hausdorff_to_extracted_mm"] = {{"symmetric", r.hausdorff->symmetric_mm()},
                                                    {"remeshed_to_extracted", r.hausdorff->a_to_b_mm},
                                                    {"extracted_to_remeshed", r.hausdorff->b_to_a_mm}};
+    if (r.restoration)
+      j["remesh"]["volume_restoration"] = {{"offset_rounds", r.restoration->rounds},
+                                           {"largest_move_mm", r.restoration->max_offset_mm},
+                                           {"stopped_to_stay_intersection_free", r.restoration->stopped_early}};
   }
   if (r.approach) {
     const Eigen::Vector3d &e = r.approach->entry(), &c = r.approach->target_centroid();
@@ -430,13 +435,24 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
   if (r.volume) {
     const VolumeStage& v = *r.volume;
     nlohmann::json vj;
-    vj["mesher"] = "CGAL Mesh_3 " + cgal_version() + " from the surface (Polyhedral_complex_mesh_domain_3)";
     vj["size_field_edge_mm"] = v.size_mm;
     vj["nodes"] = v.meshing.mesh.points.size();
     vj["tets"] = v.meshing.mesh.tets.size();
-    vj["patch_pieces"] = v.meshing.pieces;
-    vj["duplicated_piece_vertices"] = v.meshing.duplicated_vertices;
-    vj["initial_points"] = v.meshing.initial_points;
+    if (v.mesher == "tetgen") {
+      vj["mesher"] = "TetGen 1.5 from the surface, every surface triangle kept";
+      vj["tetgen_switches"] = v.tetgen_switches;
+      vj["steiner_points"] = v.steiner_points;
+      vj["cell_edge_factor"] = v.cell_edge_factor;
+      nlohmann::json rounds = nlohmann::json::array();
+      for (const BudgetRound& b : v.budget)
+        rounds.push_back({{"cell_edge_factor", b.measure > 0.0 ? std::pow(b.measure, -1.0 / 3.0) : 0.0}, {"tets", b.count}});
+      vj["target_tets_rounds"] = rounds;
+    } else {
+      vj["mesher"] = "CGAL Mesh_3 " + cgal_version() + " from the surface (Polyhedral_complex_mesh_domain_3)";
+      vj["patch_pieces"] = v.meshing.pieces;
+      vj["duplicated_piece_vertices"] = v.meshing.duplicated_vertices;
+      vj["initial_points"] = v.meshing.initial_points;
+    }
     vj["quality"] = to_json(v.quality);
     vj["conformity"] = to_json(v.conformity);
     vj["conforming"] = v.conformity.conforming();
@@ -470,6 +486,11 @@ std::string surface_job_text(const SurfaceJobResult& r) {
       << " collapses, " << r.remesh->flips << " flips, " << r.remesh->angle_moves << " angle-smoothing moves";
     if (r.remesh->quality_moves > 0) o << ", " << r.remesh->quality_moves << " quality-smoothing moves";
     o << "; " << r.remesh->partitioned_sweeps << " collapse and relaxation sweeps in two halves on two threads)\n";
+    if (r.restoration)
+      o << "volume restoration: " << r.restoration->rounds << " rounds of patch offsets, largest move "
+        << fmt("%.3f", r.restoration->max_offset_mm) << " mm"
+        << (r.restoration->stopped_early ? " (stopped where a further round would make the surface invalid)" : "")
+        << "\n";
     if (r.hausdorff)
       o << "Hausdorff distance to the extracted surface: " << fmt("%.3f", r.hausdorff->symmetric_mm())
         << " mm (remeshed -> extracted " << fmt("%.3f", r.hausdorff->a_to_b_mm) << " mm, extracted -> remeshed "
@@ -503,9 +524,24 @@ std::string surface_job_text(const SurfaceJobResult& r) {
   if (r.volume) o << "Table 3 (total cells): " << r.volume->meshing.mesh.tets.size() << " tets\n";
   if (r.volume) {
     const VolumeStage& v = *r.volume;
-    o << "\nvolume mesh (CGAL Mesh_3 from the surface, size field edge " << fmt("%.3f mm", v.size_mm) << "): "
-      << v.meshing.mesh.points.size() << " nodes, " << v.meshing.mesh.tets.size() << " tets, " << v.meshing.pieces
-      << " patch pieces\n\n";
+    if (v.mesher == "tetgen") {
+      o << "\nvolume mesh (TetGen -" << v.tetgen_switches << " from the surface, every surface triangle kept; size "
+        << "field edge " << fmt("%.3f mm", v.size_mm) << ", cell_edge_factor " << fmt("%.3g", v.cell_edge_factor)
+        << "): " << v.meshing.mesh.points.size() << " nodes (" << v.steiner_points << " added by TetGen), "
+        << v.meshing.mesh.tets.size() << " tets\n";
+      if (!v.budget.empty()) {
+        o << "volume.target_tets: TetGen gave";
+        for (const BudgetRound& b : v.budget) o << " " << b.count;
+        o << " tets (cell_edge_factor";
+        for (const BudgetRound& b : v.budget) o << " " << fmt("%.3g", b.measure > 0.0 ? std::pow(b.measure, -1.0 / 3.0) : 0.0);
+        o << "; 0 = no size bound)\n";
+      }
+      o << "\n";
+    } else {
+      o << "\nvolume mesh (CGAL Mesh_3 from the surface, size field edge " << fmt("%.3f mm", v.size_mm) << "): "
+        << v.meshing.mesh.points.size() << " nodes, " << v.meshing.mesh.tets.size() << " tets, " << v.meshing.pieces
+        << " patch pieces\n\n";
+    }
     o << format_quality_table(v.quality) << "\n";
     o << format_conformity_table(v.conformity, v.meshing.mesh.tissue_names) << "\n";
     o << sliver_repair_text(v.meshing.repair);

@@ -27,7 +27,19 @@ void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, Progress& progre
   const std::function<double(const Eigen::Vector3d&)> h = [L, field](const Eigen::Vector3d& p) {
     return field ? L * field->relative_size(p) : L;
   };
-  v.meshing = mesh_complex(r.surface(), h, config.volume, progress);
+  v.mesher = config.volume.mesher;
+  if (v.mesher == "tetgen") {
+    SurfaceTetgenResult t = mesh_surface_with_tetgen(r.surface(), h, config.volume, config.tetgen, progress);
+    v.meshing.mesh = std::move(t.mesh);
+    v.meshing.repair = t.repair;
+    v.meshing.warnings = std::move(t.warnings);
+    v.tetgen_switches = t.switches;
+    v.steiner_points = t.steiner_points;
+    v.cell_edge_factor = t.cell_edge_factor;
+    v.budget = std::move(t.budget);
+  } else {
+    v.meshing = mesh_complex(r.surface(), h, config.volume, progress);
+  }
   auto stage = progress.stage("volume mesh quality and conformity");
   v.quality = compute_quality(v.meshing.mesh, r.voxel_volume_mm3);
   v.conformity = check_conformity(v.meshing.mesh);
@@ -67,6 +79,13 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
     options.relative_size = [field](const Eigen::Vector3d& p) { return field->relative_size(p); };
   }
   r.remesh = remesh_surface(r.extraction.surface, on_extracted, options, progress);
+  if (config.surface.restore_volumes && r.remesh->checks.valid()) {
+    auto stage = progress.stage("volume restoration");
+    r.restoration = restore_volumes(r.remesh->surface, r.voxel_volume_mm3);
+    r.remesh->checks = check_surface(r.remesh->surface);
+    stage.note(std::to_string(r.restoration->rounds) + " offset rounds, largest move " +
+               format_double("%.3f", r.restoration->max_offset_mm) + " mm");
+  }
   {
     auto stage = progress.stage("remeshed surface quality");
     r.checks = r.remesh->checks;

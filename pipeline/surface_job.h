@@ -1,7 +1,8 @@
 // The surface pipeline's job: label image + config -> multi-material surface with its checks and
 // quality (Tables 1 and 2 of Alqaoud et al., "Multi-material, approach-guided,
 // controlled-resolution breast meshing", and per-tissue volume against voxel volume) -> tet mesh
-// of that surface (volume/complex_mesher.h) with its quality and conformity.
+// of that surface with its quality and conformity: CGAL Mesh_3 (volume/complex_mesher.h) or, with
+// volume.mesher: tetgen, TetGen keeping every surface triangle (volume/surface_tetgen.h).
 // The volume mesher's size field is the surface's: h(x) = L s(x) with L the remesher's edge length
 // (the mean edge of the extracted surface without remeshing) and s the approach grading (1 without
 // it). Nothing is printed; stages go through `progress`.
@@ -12,12 +13,14 @@
 #include "pipeline/mesh_config.h"
 #include "surface/approach_field.h"
 #include "volume/complex_mesher.h"
+#include "volume/surface_tetgen.h"
 #include "quality/conformity.h"
 #include "quality/mesh_quality.h"
 #include "surface/surface_distance.h"
 #include "surface/surface_extraction.h"
 #include "surface/surface_quality.h"
 #include "surface/surface_remesh.h"
+#include "surface/volume_restoration.h"
 
 #include <map>
 #include <optional>
@@ -27,7 +30,14 @@ namespace tissuemesh {
 
 /// The tet mesh of the surface and what it measured.
 struct VolumeStage {
+  /// The mesh, its sliver repairs and warnings; the CGAL counters (pieces, initial points) stay 0
+  /// with TetGen.
   ComplexMeshResult meshing;
+  std::string mesher = "cgal";   ///< volume.mesher
+  std::string tetgen_switches;   ///< TetGen only: the switches of the mesh kept
+  std::size_t steiner_points = 0;   ///< TetGen only: nodes added to the surface's
+  double cell_edge_factor = 0.0;    ///< TetGen only: the size factor used (solved under target_tets)
+  std::vector<BudgetRound> budget;  ///< TetGen only: the rounds under volume.target_tets
   double size_mm = 0.0;          ///< L of the size field h(x) = L s(x), mm
   QualityReport quality;         ///< per tissue, voxel volume as reference
   ConformityReport conformity;
@@ -38,6 +48,7 @@ struct SurfaceJobResult {
   SurfaceExtraction extraction;             ///< extracted surface, repair, vertex counts and its checks
   SurfaceQuality extracted_quality;         ///< Table 1 figures of the extracted surface
   std::optional<RemeshResult> remesh;       ///< when the config asks for remeshing
+  std::optional<VolumeRestoration> restoration;  ///< with surface.restore_volumes (remesh->surface moved)
   std::optional<SurfaceDistance> hausdorff; ///< remeshed vs extracted surface
   std::optional<ApproachField> approach;    ///< when approach.enabled
   std::optional<ApproachGrading> grading;   ///< measured on surface() when approach.enabled

@@ -27,6 +27,7 @@ SurfaceParams SurfaceParams::from_yaml(YamlMap& m) {
   p.remesh_iterations = m.integer("remesh_iterations", p.remesh_iterations);
   if (p.remesh_iterations < 1 || p.remesh_iterations > 100)
     throw InputError(m.where("remesh_iterations") + ": must be in 1..100, got " + std::to_string(p.remesh_iterations));
+  p.restore_volumes = m.boolean("restore_volumes", p.restore_volumes);
   m.finish();
   return p;
 }
@@ -38,6 +39,7 @@ void SurfaceParams::to_yaml(YAML::Emitter& out) const {
   out << YAML::Key << "target_vertices" << YAML::Value << target_vertices;
   out << YAML::Key << "target_edge_mm" << YAML::Value << target_edge_mm;
   out << YAML::Key << "remesh_iterations" << YAML::Value << remesh_iterations;
+  out << YAML::Key << "restore_volumes" << YAML::Value << restore_volumes;
   out << YAML::EndMap;
 }
 

@@ -7,6 +7,7 @@
 //     target_vertices: 0          # total vertex budget of the remeshed complex (0 = no remeshing)
 //     target_edge_mm: 0           # or a target edge length in mm (used when target_vertices is 0)
 //     remesh_iterations: 10       # split/collapse/flip/relax rounds (surface/surface_remesh.h)
+//     restore_volumes: false      # offset the remeshed patches so every tissue has its voxel volume
 #pragma once
 
 #include "core/yaml_map.h"
@@ -21,6 +22,9 @@ struct SurfaceParams {
   int target_vertices = 0;         ///< remeshing vertex budget; 0 = none (see target_edge_mm)
   double target_edge_mm = 0.0;     ///< remeshing edge length, mm, when target_vertices == 0; 0 = none
   int remesh_iterations = 10;      ///< rounds of surface/surface_remesh.h
+  /// After remeshing, offset the patches along their normals so that every tissue encloses its
+  /// voxel volume again (surface/volume_restoration.h).
+  bool restore_volumes = false;
 
   bool remesh() const { return target_vertices > 0 || target_edge_mm > 0.0; }
 

@@ -18,6 +18,37 @@ constexpr int kRounds = 4;
 
 }  // namespace
 
+std::vector<BudgetRound> meet_count_budget(std::size_t target_tets, const std::function<BudgetRound(double)>& round) {
+  const double target = static_cast<double>(target_tets);
+  std::vector<BudgetRound> rounds;
+  double next = 0.0;  // the first round: the caller's initial sizes
+  for (;;) {
+    const BudgetRound r = round(next);
+    rounds.push_back(r);
+    const double tets = static_cast<double>(r.count), raw = r.measure;
+    const double off = tets / target;
+    if (std::abs(off - 1.0) <= kSlack || static_cast<int>(rounds.size()) >= kRounds || r.count == 0) break;
+    if (off < 1.0 && r.finest) break;
+    if (rounds.size() >= 2 && std::abs(raw / rounds[rounds.size() - 2].measure - 1.0) < 1e-9) break;  // sizes at their limits
+    next = raw / off;
+    if (rounds.size() >= 2) {
+      const double r0 = rounds[rounds.size() - 2].measure;
+      const double n0 = static_cast<double>(rounds[rounds.size() - 2].count);
+      if (std::abs(std::log(raw / r0)) > 1e-6 && n0 > 0) {
+        const double exponent = std::log(tets / n0) / std::log(raw / r0);
+        if (exponent < 0.1 && off > 1.0) break;
+        if (exponent >= 0.1) next = raw * std::pow(target / tets, 1.0 / exponent);
+      }
+    }
+  }
+  return rounds;
+}
+
+bool budget_missed(std::size_t target, const std::vector<BudgetRound>& rounds) {
+  return rounds.empty() ||
+         std::abs(static_cast<double>(rounds.back().count) / static_cast<double>(target) - 1.0) > kTolerance;
+}
+
 DirectSizing refine_to_budget(const ImageSizingParams& params, std::size_t components,
                               const std::function<ImageSizing(const ImageSizingParams&)>& size,
                               const std::function<std::size_t(const ImageSizing&)>& refine) {
@@ -25,34 +56,21 @@ DirectSizing refine_to_budget(const ImageSizingParams& params, std::size_t compo
   result.target_tets = params.target_tets;
   ImageSizingParams sp = params;
   const double target = static_cast<double>(params.target_tets);
-  std::vector<double> raws;
   ImageSizing sizing;
-  for (int round = 0;; ++round) {
+  // The measure is the raw sum (prediction x tet volume factor); the sizes solved for the budget
+  // predict `target` tets, so the factor that aims at raw sum R is R / target.
+  const std::vector<BudgetRound> rounds = meet_count_budget(params.target_tets, [&](double raw) {
+    if (raw > 0.0) sp.tet_volume_factor = raw / target;
     sizing = size(sp);
-    const double tets = static_cast<double>(refine(sizing));
-    const double raw = sizing.predicted_tets * sp.tet_volume_factor;
-    result.attempts.push_back({sizing.global_edge_mm, sizing.predicted_tets, static_cast<std::size_t>(tets)});
-    raws.push_back(raw);
-    const double off = tets / target;
-    if (std::abs(off - 1.0) <= kSlack || round + 1 >= kRounds || tets == 0) break;
-    if (off < 1.0 && sizing.global_edge_mm <= sizing.min_edge_mm * 1.0001) break;  // finest edges everywhere
-    if (raws.size() >= 2 && std::abs(raw / raws[raws.size() - 2] - 1.0) < 1e-9) break;  // sizes at their limits
-    double next_raw = raw / off;
-    if (raws.size() >= 2) {
-      const double r0 = raws[raws.size() - 2];
-      const double n0 = static_cast<double>(result.attempts[result.attempts.size() - 2].refined_tets);
-      if (std::abs(std::log(raw / r0)) > 1e-6 && n0 > 0) {
-        const double exponent = std::log(tets / n0) / std::log(raw / r0);
-        if (exponent < 0.1 && off > 1.0) break;
-        if (exponent >= 0.1) next_raw = raw * std::pow(target / tets, 1.0 / exponent);
-      }
-    }
-    sp.tet_volume_factor = next_raw / target;
-  }
+    const std::size_t tets = refine(sizing);
+    result.attempts.push_back({sizing.global_edge_mm, sizing.predicted_tets, tets});
+    return BudgetRound{sizing.predicted_tets * sp.tet_volume_factor, tets,
+                       sizing.global_edge_mm <= sizing.min_edge_mm * 1.0001};
+  });
 
   const auto& last = result.attempts.back();
   const double off = static_cast<double>(last.refined_tets) / target - 1.0;
-  if (std::abs(off) > kTolerance) {
+  if (budget_missed(params.target_tets, rounds)) {
     std::ostringstream e;
     e << "direct.target_tets: a budget of " << params.target_tets << " tets cannot be met on this image; the "
       << "refinements gave";

@@ -10,21 +10,33 @@
 #include "core/yaml_map.h"
 #include "volume/mesh3_optimisation.h"
 
+#include <cstddef>
+#include <string>
+
 namespace tissuemesh {
 
 struct VolumeMeshParams {
+  /// "cgal": CGAL Mesh_3 from the surface complex (complex_mesher.h), which resamples the surface;
+  /// "tetgen": TetGen from the surface itself, every surface triangle kept (surface_tetgen.h).
+  std::string mesher = "cgal";
+  /// With mesher tetgen: total tets to aim for (0 = none); cell_edge_factor is then solved so that
+  /// the count lands within 10 % (surface_tetgen.h). An InputError with mesher cgal.
+  std::size_t target_tets = 0;
   /// Target surface (and junction) edge length relative to h(x): the facet size criterion is the
   /// circumradius of the equilateral triangle of that edge, the feature edge size the edge itself.
   double surface_edge_factor = 1.0;
   /// Largest tet relative to h(x): the cell size criterion is the circumradius of the regular tet
   /// whose edge is cell_edge_factor * e(x), e(x) = min(h(x) + cell_growth * d(x), max_cell_edge_mm).
+  /// With mesher tetgen: that circumradius with e = h at the surface points, interpolated inside;
+  /// 0 (tetgen only) = no size bound.
   double cell_edge_factor = 1.5;
   /// Interior grading: how fast the tet edge may grow with the distance d(x) (mm) from the nearest
   /// boundary or interface (mm of edge per mm of distance; 0 = no grading: tets as fine as the
   /// surface everywhere). Radius-edge refinement keeps neighbours within a bounded size ratio.
+  /// CGAL only (an InputError with mesher tetgen, whose interior follows the surface's sizes).
   double cell_growth = 0.0;
   /// Cap of the graded tet edge e(x), mm; 0 = no cap (the radius-edge bound and the tissue's own
-  /// thickness then limit the tets).
+  /// thickness then limit the tets). CGAL only, as cell_growth.
   double max_cell_edge_mm = 0.0;
 
   /// Edges where a patch folds by more than this (degrees between the normals of its two

@@ -1,0 +1,219 @@
+// Why least-norm over patches rather than per tissue: an interface belongs to two tissues, and a
+// move of one side is a move of the other; solving for the patches lets a fgt deficit be paid by
+// the fat around it (whose relative change is small) without a second, contradicting move.
+#include "surface/volume_restoration.h"
+
+#include "core/errors.h"
+#include "surface/surface_checks.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <utility>
+
+namespace tissuemesh {
+
+namespace {
+
+using Eigen::Vector3d;
+
+constexpr double kMaxNormalTurnDeg = 60.0;
+constexpr int kTaperRings = 3;
+constexpr double kFlatDeg = 10.0;   // faces within this of the vertex normal: full offset
+constexpr double kBentDeg = 40.0;   // a face this far off: none
+constexpr int kHalvings = 3;        // a round that fails is retried at half its offsets this often
+
+constexpr double kFrozenMarginDeg = 2.0;  // triangles this close to the smallest angle stay
+
+double triangle_min_angle_deg(const TriSurface& s, const std::array<int, 3>& w) {
+  double smallest = 180.0;
+  for (int e = 0; e < 3; ++e) {
+    const Vector3d a = s.points[w[(e + 1) % 3]] - s.points[w[e]], b = s.points[w[(e + 2) % 3]] - s.points[w[e]];
+    smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI);
+  }
+  return smallest;
+}
+
+double min_triangle_angle_deg(const TriSurface& s) {
+  double smallest = 180.0;
+  for (const auto& w : s.triangles) smallest = std::min(smallest, triangle_min_angle_deg(s, w));
+  return smallest;
+}
+
+Vector3d raw_normal(const TriSurface& s, int t) {
+  const auto& w = s.triangles[t];
+  return (s.points[w[1]] - s.points[w[0]]).cross(s.points[w[2]] - s.points[w[0]]);
+}
+
+}  // namespace
+
+std::map<int, double> enclosed_volumes(const TriSurface& s) {
+  std::map<int, double> v;
+  for (int id = 1; id <= static_cast<int>(s.tissue_names.size()); ++id) v[id] = 0.0;
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    const auto& w = s.triangles[t];
+    // The normal points from p into q: the triangle bounds p outward and q inward.
+    const double six_v = s.points[w[0]].dot(s.points[w[1]].cross(s.points[w[2]]));
+    if (s.labels[t][0] > 0) v[s.labels[t][0]] += six_v / 6.0;
+    if (s.labels[t][1] > 0) v[s.labels[t][1]] -= six_v / 6.0;
+  }
+  return v;
+}
+
+VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& reference, double tolerance_rel,
+                                  int max_rounds) {
+  const int n_tissues = static_cast<int>(s.tissue_names.size());
+  for (const auto& [id, v] : reference)
+    if (id < 1 || id > n_tissues || !(v > 0.0 && std::isfinite(v)))
+      throw InputError("volume restoration: reference volume of tissue id " + std::to_string(id) +
+                       " is not a positive volume of a tissue of the surface");
+  VolumeRestoration result;
+  result.volume_before_mm3 = enclosed_volumes(s);
+  result.volume_after_mm3 = result.volume_before_mm3;
+
+  // Patches (region pairs) and, per vertex, the one patch it lies on (-1: on several, a junction).
+  std::map<std::pair<int, int>, int> patch_of_pair;
+  std::vector<int> patch(s.triangles.size());
+  std::vector<std::pair<int, int>> pairs;
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    const std::pair<int, int> key{s.labels[t][0], s.labels[t][1]};
+    const auto [it, added] = patch_of_pair.emplace(key, static_cast<int>(pairs.size()));
+    if (added) pairs.push_back(key);
+    patch[t] = it->second;
+  }
+  std::vector<int> vertex_patch(s.points.size(), -2);  // -2: on no triangle
+  for (std::size_t t = 0; t < s.triangles.size(); ++t)
+    for (int v : s.triangles[t]) vertex_patch[v] = vertex_patch[v] == -2 || vertex_patch[v] == patch[t] ? patch[t] : -1;
+  for (const auto& line : s.junctions)
+    for (int v : line) vertex_patch[v] = -1;
+  // Weights: 0 on the junctions, growing over kTaperRings rings of edges to 1, so that the
+  // triangles at a junction (often the smallest and most folded) tilt by a fraction of the offset.
+  std::vector<double> weight(s.points.size(), 0.0);
+  {
+    std::vector<int> ring(s.points.size(), kTaperRings);
+    std::vector<int> front;
+    for (std::size_t v = 0; v < s.points.size(); ++v)
+      if (vertex_patch[v] == -1) {
+        ring[v] = 0;
+        front.push_back(static_cast<int>(v));
+      }
+    std::vector<std::vector<int>> neighbours(s.points.size());
+    for (const auto& t : s.triangles)
+      for (int e = 0; e < 3; ++e) neighbours[t[e]].push_back(t[(e + 1) % 3]), neighbours[t[(e + 1) % 3]].push_back(t[e]);
+    for (int r = 1; r < kTaperRings && !front.empty(); ++r) {
+      std::vector<int> next;
+      for (int v : front)
+        for (int w : neighbours[v])
+          if (ring[w] > r) {
+            ring[w] = r;
+            next.push_back(w);
+          }
+      front = std::move(next);
+    }
+    for (std::size_t v = 0; v < s.points.size(); ++v)
+      weight[v] = vertex_patch[v] >= 0 ? static_cast<double>(ring[v]) / kTaperRings : 0.0;
+  }
+  // And 0 where the patch bends sharply at the vertex (the rim of a thin sheet): an offset along
+  // diverging normals stretches those triangles; flat and gently curved parts move instead.
+  {
+    std::vector<Vector3d> n(s.points.size(), Vector3d::Zero());
+    for (std::size_t t = 0; t < s.triangles.size(); ++t)
+      for (int v : s.triangles[t]) n[v] += raw_normal(s, static_cast<int>(t));
+    std::vector<double> spread(s.points.size(), 1.0);  // smallest cosine between a face and the vertex normal
+    for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+      const Vector3d f = raw_normal(s, static_cast<int>(t)).normalized();
+      for (int v : s.triangles[t]) spread[v] = std::min(spread[v], f.dot(n[v].normalized()));
+    }
+    const double flat = std::cos(kFlatDeg * M_PI / 180.0), bent = std::cos(kBentDeg * M_PI / 180.0);
+    for (std::size_t v = 0; v < s.points.size(); ++v)
+      weight[v] *= std::clamp((spread[v] - bent) / (flat - bent), 0.0, 1.0);
+  }
+  // And 0 at the triangles within kFrozenMarginDeg of the smallest angle: those set Table 1's
+  // minimum, which the restoration must not lower.
+  const double min_angle_before = min_triangle_angle_deg(s);
+  for (const auto& w : s.triangles)
+    if (triangle_min_angle_deg(s, w) < min_angle_before + kFrozenMarginDeg)
+      for (int v : w) weight[v] = 0.0;
+  // Only tissues with a reference constrain the offsets.
+  std::vector<int> constrained;
+  for (const auto& [id, v] : reference) constrained.push_back(id);
+  const int np = static_cast<int>(pairs.size()), nc = static_cast<int>(constrained.size());
+  if (np == 0 || nc == 0) return result;
+
+  auto within = [&](const std::map<int, double>& volumes) {
+    for (const auto& [id, ref] : reference)
+      if (std::abs(volumes.at(id) / ref - 1.0) > tolerance_rel) return false;
+    return true;
+  };
+  for (int round = 0; round < max_rounds && !within(result.volume_after_mm3); ++round) {
+    // Areas of the movable part of each patch: the triangles' area shared out to their movable
+    // vertices (a third each), so a junction-bound strip counts for less than its full area.
+    Eigen::VectorXd area = Eigen::VectorXd::Zero(np);
+    for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+      const double a = 0.5 * raw_normal(s, static_cast<int>(t)).norm();
+      for (int v : s.triangles[t]) area[patch[t]] += weight[v] * a / 3.0;
+    }
+    // C d = deficit, C(i, k) = +A_k when tissue i is p of patch k, -A_k when it is q.
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(nc, np);
+    Eigen::VectorXd deficit(nc);
+    for (int i = 0; i < nc; ++i) {
+      const int id = constrained[i];
+      deficit[i] = reference.at(id) - result.volume_after_mm3.at(id);
+      for (int k = 0; k < np; ++k) {
+        if (pairs[k].first == id) C(i, k) = area[k];
+        if (pairs[k].second == id) C(i, k) = -area[k];
+      }
+    }
+    // Least norm in sum A_k d_k^2: d = W^-1 C^T (C W^-1 C^T)^+ deficit, W = diag(A).
+    Eigen::VectorXd inv_area(np);
+    for (int k = 0; k < np; ++k) inv_area[k] = area[k] > 0.0 ? 1.0 / area[k] : 0.0;
+    const Eigen::MatrixXd CWinv = C * inv_area.asDiagonal();
+    const Eigen::MatrixXd M = CWinv * C.transpose();
+    const Eigen::VectorXd lambda = M.completeOrthogonalDecomposition().solve(deficit);
+    const Eigen::VectorXd d = CWinv.transpose() * lambda;
+
+    // Move each movable vertex by d of its patch along its area-weighted normal there.
+    std::vector<Vector3d> normal(s.points.size(), Vector3d::Zero());
+    for (std::size_t t = 0; t < s.triangles.size(); ++t)
+      for (int v : s.triangles[t]) normal[v] += raw_normal(s, static_cast<int>(t));
+    const std::vector<Vector3d> before = s.points;
+    std::vector<Vector3d> triangle_normal(s.triangles.size());
+    for (std::size_t t = 0; t < s.triangles.size(); ++t) triangle_normal[t] = raw_normal(s, static_cast<int>(t));
+    const double min_cos = std::cos(kMaxNormalTurnDeg * M_PI / 180.0);
+    bool ok = false;
+    double largest = 0.0, scale = 1.0;
+    for (int attempt = 0; attempt <= kHalvings && !ok; ++attempt, scale *= 0.5) {
+      s.points = before;
+      largest = 0.0;
+      for (std::size_t v = 0; v < s.points.size(); ++v) {
+        if (weight[v] == 0.0 || normal[v].squaredNorm() == 0.0) continue;
+        const double move = scale * weight[v] * d[vertex_patch[v]];
+        s.points[v] += move * normal[v].normalized();
+        largest = std::max(largest, std::abs(move));
+      }
+      // Kept only if no triangle turns over, the smallest angle stays and the surface stays valid.
+      ok = true;
+      for (std::size_t t = 0; t < s.triangles.size() && ok; ++t) {
+        const Vector3d n = raw_normal(s, static_cast<int>(t));
+        ok = n.dot(triangle_normal[t]) > min_cos * n.norm() * triangle_normal[t].norm();
+      }
+      if (ok) ok = min_triangle_angle_deg(s) >= min_angle_before;
+      if (ok) ok = check_surface(s, nullptr, PairSearch::Grid).valid();
+    }
+    if (!ok) {
+      s.points = before;
+      result.stopped_early = true;
+      break;
+    }
+    ++result.rounds;
+    result.max_offset_mm = std::max(result.max_offset_mm, largest);
+    result.volume_after_mm3 = enclosed_volumes(s);
+  }
+  return result;
+}
+
+}  // namespace tissuemesh

@@ -1,0 +1,53 @@
+// Volume restoration of a remeshed surface (surface/volume_restoration.h): a coarse remesh of the
+// test complexes loses volume; the patch offsets give every tissue its reference volume back (here
+// the extracted surface's) to the tolerance, the surface stays valid and intersection free, its
+// smallest triangle angle does not drop, junction vertices stay where they are, and a bad
+// reference is an input error.
+#include "core/errors.h"
+#include "surface/surface_checks.h"
+#include "surface/surface_quality.h"
+#include "surface/volume_restoration.h"
+#include "support/complex_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <tuple>
+
+using namespace tissuemesh;
+using namespace tissuemesh::test;
+
+TEST(VolumeRestoration, RemeshedComplexesGetTheirVolumesBack) {
+  for (const auto& [image, tissues, budget] :
+       {std::tuple{nested_spheres(), 2, 150}, std::tuple{three_boxes(), 3, 200}}) {
+    const std::map<int, double> reference = enclosed_volumes(extract(image, tissues).surface);
+    TriSurface s = remeshed(image, tissues, budget).surface;
+    const std::map<int, double> before = enclosed_volumes(s);
+    double worst_before = 0.0;
+    for (const auto& [id, v] : reference) worst_before = std::max(worst_before, std::abs(before.at(id) / v - 1.0));
+    ASSERT_GT(worst_before, 1e-3) << "the coarse remesh must lose volume for the test to mean something";
+    const double min_angle = surface_quality(s).min_angle_deg;
+    const TriSurface original = s;
+
+    const VolumeRestoration r = restore_volumes(s, reference);
+    EXPECT_GE(r.rounds, 1);
+    EXPECT_FALSE(r.stopped_early);
+    for (const auto& [id, v] : reference) {
+      EXPECT_NEAR(r.volume_after_mm3.at(id) / v, 1.0, 1e-4) << "tissue " << id;
+      EXPECT_NEAR(enclosed_volumes(s).at(id), r.volume_after_mm3.at(id), 1e-9 * v);
+    }
+    EXPECT_TRUE(check_surface(s).valid());
+    EXPECT_GE(surface_quality(s).min_angle_deg, min_angle);
+    EXPECT_EQ(s.triangles, original.triangles);
+    for (const auto& line : s.junctions)
+      for (int v : line) EXPECT_EQ(s.points[v], original.points[v]);
+    EXPECT_GT(r.max_offset_mm, 0.0);
+    EXPECT_LT(r.max_offset_mm, 1.0);  // a small correction, not a new surface
+  }
+}
+
+TEST(VolumeRestoration, BadReferenceIsAnInputError) {
+  TriSurface s = remeshed(nested_spheres(), 2, 150).surface;
+  EXPECT_THROW(restore_volumes(s, {{3, 100.0}}), InputError);
+  EXPECT_THROW(restore_volumes(s, {{1, -1.0}}), InputError);
+}
