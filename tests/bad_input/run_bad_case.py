@@ -134,11 +134,17 @@ def run_case(exe, corpus, scratch, case):
         start = time.monotonic()
         proc = subprocess.Popen([exe] + args, cwd=scratch, env=env, stdout=subprocess.PIPE,
                                 stderr=subprocess.PIPE, text=True, errors="replace")
+        first_line = ""
         if "signal_after" in case:
+            # Counted from the run's first progress line, printed after main() has installed the
+            # signal handlers: a delay counted from the start raced a slow start (sanitizers, load).
+            first_line = proc.stdout.readline()
             time.sleep(float(case["signal_after"]))
-            proc.send_signal(getattr(signal, case.get("signal", "SIGINT")))
+            if proc.poll() is None:
+                proc.send_signal(getattr(signal, case.get("signal", "SIGINT")))
         try:
             stdout, stderr = proc.communicate(timeout=max(0.0, limit - (time.monotonic() - start)))
+            stdout = first_line + stdout
         except subprocess.TimeoutExpired:
             proc.kill()
             stdout, stderr = proc.communicate()
