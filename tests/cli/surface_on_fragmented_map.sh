@@ -3,7 +3,8 @@
 # remeshing round): a fragmented label map (tests/cli/inputs/fragmented_labels.py, 64^3 voxels of
 # 0.5 mm, thousands of fgt islands, a two-voxel skin) meshed by the surface pipeline at two vertex
 # budgets. Each run must end by itself: exit 0 with a mesh, or exit 1 or 2 with a message that
-# names what to change, its reports written and no mesh; never a signal.
+# names what to change, its reports written and no mesh; never a signal. Labelled cli only, so not
+# in the sanitizer run: instrumented, its two surface-pipeline runs take several minutes.
 # Usage: surface_on_fragmented_map.sh TISSUEMESH PYTHON3 SOURCE_DIR WORK_DIR
 set -u
 exe=$1; py=$2; src=$3; work=$4
