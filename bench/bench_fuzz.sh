@@ -5,12 +5,16 @@
 # a leak, a timeout or an out-of-memory input; the inputs are kept in build-fuzz/fuzz-findings/, the logs in build-fuzz/fuzz-run/.
 #   bash bench/bench_fuzz.sh [SECONDS] [JOBS]     (default 600 s, 2 at a time; CI: 60)
 #   FUZZ_TARGETS="nifti vtu" bash bench/bench_fuzz.sh 600   only these targets
+#   FUZZ_SEED=1 bash bench/bench_fuzz.sh 60                  libFuzzer's random seed fixed (CI), so a
+#                                                             finding there can be replayed; default random
 # Builds build-fuzz/ with clang (-DTISSUEMESH_FUZZ=ON), only the fuzz targets and what they link.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 SECONDS_EACH=${1:-600}
 JOBS=${2:-2}
 BUILD=${FUZZ_BUILD_DIR:-build-fuzz}
+SEED_FLAG=()
+[ -n "${FUZZ_SEED:-}" ] && SEED_FLAG=(-seed="$FUZZ_SEED")
 read -r -a TARGETS <<< "${FUZZ_TARGETS:-nifti nrrd metaimage vtu config sweep}"
 
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
@@ -31,7 +35,7 @@ fuzz_one() {
   TMPDIR="$RUN/tmp-$t" ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:fast_unwind_on_malloc=0" \
     LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0" \
     UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
-    "$BUILD/tests/fuzz/fuzz_$t" -max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2048 \
+    "$BUILD/tests/fuzz/fuzz_$t" "${SEED_FLAG[@]}" -max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2048 \
     -malloc_limit_mb=2048 -max_len=65536 -print_final_stats=1 -close_fd_mask=1 \
     -artifact_prefix="$FINDINGS/$t-" "$RUN/corpus-$t" "$RUN/seeds/$t" > "$RUN/$t.log" 2>&1 || true
 }

@@ -485,7 +485,9 @@ ImageHeader read_metaimage_header(const std::string& path) {
   }
 
   const std::string& data_file = f.require("ElementDataFile");
-  if (lower(data_file) == "local") {
+  // MetaIO's own spellings of "the data follow the header", and only these: any other spelling
+  // (e.g. "LoCAL") is a file name to MetaIO, so it must be one here too.
+  if (data_file == "LOCAL" || data_file == "Local" || data_file == "local") {
     h.data_file = path;
     h.data_offset = lines.offset();
   } else {
