@@ -28,6 +28,8 @@ PACKAGES=(
   libjs-three libjs-chart.js                    # three.js and Chart.js, inlined into report.html
   chromium fonts-dejavu-core python3-pil        # headless browser test of report.html (PIL reads
                                                 #   its screenshot)
+  clang libclang-rt-14-dev                      # libFuzzer targets (bench/bench_fuzz.sh; the fuzzer
+                                                #   runtime is only recommended by clang)
 )
 
 missing=()
