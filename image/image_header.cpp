@@ -468,6 +468,8 @@ ImageHeader read_metaimage_header(const std::string& path) {
   }
   if (const std::string* size = f.find({"CompressedDataSize"})) {
     h.compressed_size = f.number<std::int64_t>(*size, "CompressedDataSize");
+    // MetaIO allocates this many bytes as given: a negative size becomes 2^64 - n.
+    if (h.compressed_size < 0) f.fail("MetaImage CompressedDataSize must be at least 0");
   }
 
   // Geometry, already LPS. TransformMatrix follows ITK's MetaImageIO, which writes
