@@ -89,7 +89,9 @@ void add_sliver_repair_json(nlohmann::json& j, const SliverRepair& repair, const
   j["sliver_smoothing"] = {{"vertex_moves", repair.sliver_smoothing.moved_vertices},
                            {"vertex_moves_on_curved_surface", repair.sliver_smoothing.moved_on_surface},
                            {"passes", repair.sliver_smoothing.passes}};
-  j["sliver_splits"] = {{"edges_split", repair.sliver_splits.splits}};
+  j["sliver_splits"] = {{"edges_split", repair.sliver_splits.splits},
+                        {"interface_wedges_relabelled", repair.sliver_splits.relabelled_wedges},
+                        {"volume_relabelled_mm3", repair.sliver_splits.volume_relabelled_mm3}};
   const BoundaryPinchRepair& p = repair.boundary_pinches;
   nlohmann::json per_tissue = nlohmann::json::object();
   for (std::size_t t = 0; t < p.removed_per_tissue.size(); ++t)
@@ -113,7 +115,14 @@ std::string sliver_repair_text(const SliverRepair& repair) {
   if (m.moved_on_surface > 0) s << "; " << m.moved_on_surface << " of them over a curved one, kept on the input's boundaries and interfaces";
   s << ") in " << m.passes << " passes\n";
   if (repair.sliver_splits.splits > 0)
-    s << "sliver splits: " << repair.sliver_splits.splits << " edges inside one tissue split (a node added in each)\n";
+  {
+    const SliverSplitResult& sp = repair.sliver_splits;
+    s << "sliver splits: " << sp.splits << " edges inside one tissue split (a node added in each)";
+    if (sp.relabelled_wedges > 0)
+      s << "; " << sp.relabelled_wedges << " of them after giving a flat interface wedge to the tissue around the edge ("
+        << fmt("%.4f mm^3 moved", sp.volume_relabelled_mm3) << ")";
+    s << "\n";
+  }
   const BoundaryPinchRepair& p = repair.boundary_pinches;
   if (p.edges_found > 0)
     s << "boundary pinches opened: " << p.edges_found << " edges where the outer boundary touched itself, "

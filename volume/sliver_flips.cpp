@@ -1,6 +1,7 @@
 #include "volume/sliver_flips.h"
 
 #include "core/face_key.h"
+#include "volume/wedge_relabel.h"
 #include "quality/mesh_quality.h"
 
 #include <algorithm>
@@ -15,11 +16,6 @@ namespace tissuemesh {
 namespace {
 
 constexpr int kMaxRing = 7;  // edge removal beyond 7 tets rarely helps and grows as n^3
-// A wedge may change tissue when its volume is below this fraction of the regular tet on its
-// longest edge (L^3 / (6 sqrt 2)): its four nodes are then close to one plane, so the interface
-// moves by little. 0.2 admits the flat wedges found next to slivers on the phantom's interfaces
-// (about 0.15); a moved volume stays below 0.2 L^3 / 8.5, e.g. 0.16 mm^3 at L = 1.9 mm.
-constexpr double kFlatWedge = 0.2;
 
 struct NewTet {
   std::array<int, 4> v;
@@ -177,9 +173,11 @@ class FlipMesh {
   }
 
   // Tissue B of the two tets across the faces of t that contain edge (p,q), when t is a flat
-  // wedge on B's interface that can be given to B without changing anything else: t's other two
-  // faces border t's own tissue A, every other tet around the opposite edge (r,s) is A (so A
-  // stays face-connected there), and t is flat (kFlatWedge). -1 otherwise.
+  // wedge on B's interface that can be given to B without changing anything else: t is flat
+  // (is_flat_wedge), and either t's other two faces border t's own tissue A and every other tet
+  // around the opposite edge (r,s) is A (so A stays face-connected there), or giving t to B
+  // keeps every tissue's local topology (wedge_relabel.h; e.g. a sliver of A between two
+  // faces of B, one of A and one of a third tissue). -1 otherwise.
   int wedge_tissue(int t, int p, int q) const {
     int other[2], n = 0;
     for (int x : m_.tets[t])
@@ -189,15 +187,13 @@ class FlipMesh {
     if (n1 < 0 || n2 < 0) return -1;
     const int b = m_.tissue_ids[n1];
     if (b != m_.tissue_ids[n2] || b == a) return -1;
+    if (!is_flat_wedge(m_, t)) return -1;
     const int n3 = across(r, s, p, t), n4 = across(r, s, q, t);
-    if (n3 < 0 || n4 < 0 || m_.tissue_ids[n3] != a || m_.tissue_ids[n4] != a) return -1;
-    if (!all_around_edge_are(r, s, t, a)) return -1;
-    // Flat: volume under kFlatWedge times the regular tet on its longest edge (L^3 / (6 sqrt 2)).
-    const auto& T = m_.tets[t];
-    double longest = 0;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (m_.points[T[i]] - m_.points[T[j]]).norm());
-    if (volume(T) > kFlatWedge * longest * longest * longest / (6.0 * std::sqrt(2.0))) return -1;
+    const bool inside_own = n3 >= 0 && n4 >= 0 && m_.tissue_ids[n3] == a && m_.tissue_ids[n4] == a &&
+                            all_around_edge_are(r, s, t, a);
+    if (!inside_own &&
+        !relabel_keeps_topology(m_, t, b, [this](int x, int y, int z, int u) { return across(x, y, z, u); }))
+      return -1;
     return b;
   }
 

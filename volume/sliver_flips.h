@@ -14,8 +14,9 @@
 // wedge's (near-zero) volume changes tissue; both are reported. The wedge is either the bad tet
 // itself (given to the tissue around its edge) or one other tet around an edge of the bad tet
 // (given to the bad tet's tissue; e.g. a sliver lying on an interface next to a flat wedge of the
-// other tissue). Only one wedge changes per flip; its other two faces must border its own tissue
-// and every other tet around its opposite edge be of that tissue (no tissue is pinched).
+// other tissue). Only one wedge changes per flip, and only if no tissue is pinched, split or
+// joined by it: either its other two faces border its own tissue and every other tet around its
+// opposite edge is of that tissue, or the local test of wedge_relabel.h holds.
 // Deterministic (bad tets in order of quality, then index).
 #pragma once
 

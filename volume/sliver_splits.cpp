@@ -1,6 +1,7 @@
 #include "volume/sliver_splits.h"
 
 #include "quality/mesh_quality.h"
+#include "volume/wedge_relabel.h"
 
 #include <algorithm>
 #include <array>
@@ -27,8 +28,9 @@ class Splitter {
       for (int v : mesh.tets[t]) star_[v].push_back(t);
   }
 
-  /// Tries the interior edges of tet t, longest first; true when one was split.
-  bool try_tet(std::size_t t) {
+  /// Tries the interior edges of tet t, longest first, then (when `relabel`) the edges around
+  /// which t is a flat wedge in another tissue; true when one was split.
+  bool try_tet(std::size_t t, bool relabel, SliverSplitResult& r) {
     const auto& k = mesh_.tets[t];
     std::vector<std::pair<double, std::pair<int, int>>> edges;
     for (int i = 0; i < 4; ++i)
@@ -37,12 +39,54 @@ class Splitter {
     std::sort(edges.begin(), edges.end());
     for (const auto& e : edges)
       if (try_edge(e.second.first, e.second.second)) return true;
+    if (!relabel || !is_flat_wedge(mesh_, static_cast<int>(t))) return false;
+    const int from = mesh_.tissue_ids[t];
+    const double wedge_volume = std::abs(signed_volume(t));
+    const AcrossFace across = [this](int a, int b, int c, int x) { return this->across(a, b, c, x); };
+    for (const auto& e : edges) {
+      const int to = sole_other_tissue(e.second.first, e.second.second, t);
+      if (to < 0 || to == from || !relabel_keeps_topology(mesh_, static_cast<int>(t), to, across)) continue;
+      mesh_.tissue_ids[t] = to;
+      if (try_edge(e.second.first, e.second.second)) {
+        ++r.relabelled_wedges;
+        r.volume_relabelled_mm3 += wedge_volume;
+        return true;
+      }
+      mesh_.tissue_ids[t] = from;
+    }
     return false;
   }
 
  private:
   TetMesh& mesh_;
   std::vector<std::vector<std::size_t>> star_;  ///< per node: its tets
+
+  double signed_volume(std::size_t t) const {
+    const auto& k = mesh_.tets[t];
+    return signed_tet_volume(mesh_.points[k[0]], mesh_.points[k[1]], mesh_.points[k[2]], mesh_.points[k[3]]);
+  }
+
+  // The other tet than x on face (a, b, c), or -1.
+  int across(int a, int b, int c, int x) const {
+    for (std::size_t t : star_[a]) {
+      if (static_cast<int>(t) == x) continue;
+      const auto& k = mesh_.tets[t];
+      if (std::find(k.begin(), k.end(), b) != k.end() && std::find(k.begin(), k.end(), c) != k.end())
+        return static_cast<int>(t);
+    }
+    return -1;
+  }
+
+  // The tissue of every tet around edge (a, b) other than t, or -1 when they differ or none is.
+  int sole_other_tissue(int a, int b, std::size_t t) const {
+    int tissue = -1;
+    for (std::size_t x : ring(a, b)) {
+      if (x == t) continue;
+      if (tissue >= 0 && mesh_.tissue_ids[x] != tissue) return -1;
+      tissue = mesh_.tissue_ids[x];
+    }
+    return tissue;
+  }
 
   std::vector<std::size_t> ring(int a, int b) const {
     std::vector<std::size_t> out;
@@ -143,7 +187,7 @@ class Splitter {
 
 }  // namespace
 
-SliverSplitResult split_slivers(TetMesh& mesh, double target_deg, int max_passes) {
+SliverSplitResult split_slivers(TetMesh& mesh, double target_deg, bool allow_interface_relabels, int max_passes) {
   SliverSplitResult r;
   Splitter splitter(mesh);
   for (int pass = 0; pass < max_passes; ++pass) {
@@ -156,7 +200,7 @@ SliverSplitResult split_slivers(TetMesh& mesh, double target_deg, int max_passes
     std::size_t before = r.splits;
     for (const auto& [q, t] : bad) {
       if (min_angle(mesh.points, mesh.tets[t]) >= target_deg) continue;  // an earlier split fixed it
-      if (splitter.try_tet(t)) ++r.splits;
+      if (splitter.try_tet(t, allow_interface_relabels, r)) ++r.splits;
     }
     if (r.splits == before) break;
   }
