@@ -406,6 +406,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
     if (r.restoration)
       j["remesh"]["volume_restoration"] = {{"offset_rounds", r.restoration->rounds},
                                            {"largest_move_mm", r.restoration->max_offset_mm},
+                                           {"vertices_held", r.restoration->frozen_vertices},
                                            {"stopped_to_stay_intersection_free", r.restoration->stopped_early}};
   }
   if (r.approach) {
@@ -498,6 +499,10 @@ std::string surface_job_text(const SurfaceJobResult& r) {
     if (r.restoration)
       o << "volume restoration: " << r.restoration->rounds << " rounds of patch offsets, largest move "
         << fmt("%.3f", r.restoration->max_offset_mm) << " mm"
+        << (r.restoration->frozen_vertices > 0
+                ? "; " + std::to_string(r.restoration->frozen_vertices) +
+                      " vertices held in place where a round would have broken the surface"
+                : std::string())
         << (r.restoration->stopped_early ? " (stopped where a further round would make the surface invalid)" : "")
         << "\n";
     if (r.hausdorff)

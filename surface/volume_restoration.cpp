@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <utility>
@@ -25,9 +26,13 @@ constexpr double kMaxNormalTurnDeg = 60.0;
 constexpr int kTaperRings = 3;
 constexpr double kFlatDeg = 10.0;   // faces within this of the vertex normal: full offset
 constexpr double kBentDeg = 40.0;   // a face this far off: none
-constexpr int kHalvings = 3;        // a round that fails is retried at half its offsets this often
+constexpr int kFreezings = 8;       // a round that breaks the surface is solved again without the spot this often
+constexpr int kHalvings = 3;        // and then retried at half its offsets this often
 
 constexpr double kFrozenMarginDeg = 2.0;  // triangles this close to the smallest angle stay
+constexpr double kMaxMoveOfEdge = 1.0;    // largest move of a vertex a round, in its shortest edges
+constexpr double kErrorSlack = 1e-3;      // a round may raise one tissue's relative error this much,
+constexpr double kErrorSlackOfSum = 0.05; // plus this part of the sum of the errors it corrects
 
 double triangle_min_angle_deg(const TriSurface& s, const std::array<int, 3>& w) {
   double smallest = 180.0;
@@ -92,6 +97,18 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
     for (int v : line) vertex_patch[v] = -1;
   // Weights: 0 on the junctions, growing over kTaperRings rings of edges to 1, so that the
   // triangles at a junction (often the smallest and most folded) tilt by a fraction of the offset.
+  std::vector<std::vector<int>> neighbours(s.points.size());
+  for (const auto& t : s.triangles)
+    for (int e = 0; e < 3; ++e) neighbours[t[e]].push_back(t[(e + 1) % 3]), neighbours[t[(e + 1) % 3]].push_back(t[e]);
+  // A vertex moves by at most kMaxMoveOfEdge of its shortest edge a round: where few vertices of a
+  // patch may move (a small island, most of it bent), the solved offset is large, and those
+  // vertices would make spikes; they are held instead, and the offsets solved again.
+  std::vector<double> max_move(s.points.size(), 0.0);
+  for (std::size_t v = 0; v < s.points.size(); ++v) {
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int w : neighbours[v]) shortest = std::min(shortest, (s.points[w] - s.points[v]).norm());
+    if (std::isfinite(shortest)) max_move[v] = kMaxMoveOfEdge * shortest;
+  }
   std::vector<double> weight(s.points.size(), 0.0);
   {
     std::vector<int> ring(s.points.size(), kTaperRings);
@@ -101,9 +118,6 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
         ring[v] = 0;
         front.push_back(static_cast<int>(v));
       }
-    std::vector<std::vector<int>> neighbours(s.points.size());
-    for (const auto& t : s.triangles)
-      for (int e = 0; e < 3; ++e) neighbours[t[e]].push_back(t[(e + 1) % 3]), neighbours[t[(e + 1) % 3]].push_back(t[e]);
     for (int r = 1; r < kTaperRings && !front.empty(); ++r) {
       std::vector<int> next;
       for (int v : front)
@@ -150,33 +164,6 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
     return true;
   };
   for (int round = 0; round < max_rounds && !within(result.volume_after_mm3); ++round) {
-    // Areas of the movable part of each patch: the triangles' area shared out to their movable
-    // vertices (a third each), so a junction-bound strip counts for less than its full area.
-    Eigen::VectorXd area = Eigen::VectorXd::Zero(np);
-    for (std::size_t t = 0; t < s.triangles.size(); ++t) {
-      const double a = 0.5 * raw_normal(s, static_cast<int>(t)).norm();
-      for (int v : s.triangles[t]) area[patch[t]] += weight[v] * a / 3.0;
-    }
-    // C d = deficit, C(i, k) = +A_k when tissue i is p of patch k, -A_k when it is q.
-    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(nc, np);
-    Eigen::VectorXd deficit(nc);
-    for (int i = 0; i < nc; ++i) {
-      const int id = constrained[i];
-      deficit[i] = reference.at(id) - result.volume_after_mm3.at(id);
-      for (int k = 0; k < np; ++k) {
-        if (pairs[k].first == id) C(i, k) = area[k];
-        if (pairs[k].second == id) C(i, k) = -area[k];
-      }
-    }
-    // Least norm in sum A_k d_k^2: d = W^-1 C^T (C W^-1 C^T)^+ deficit, W = diag(A).
-    Eigen::VectorXd inv_area(np);
-    for (int k = 0; k < np; ++k) inv_area[k] = area[k] > 0.0 ? 1.0 / area[k] : 0.0;
-    const Eigen::MatrixXd CWinv = C * inv_area.asDiagonal();
-    const Eigen::MatrixXd M = CWinv * C.transpose();
-    const Eigen::VectorXd lambda = M.completeOrthogonalDecomposition().solve(deficit);
-    const Eigen::VectorXd d = CWinv.transpose() * lambda;
-
-    // Move each movable vertex by d of its patch along its area-weighted normal there.
     std::vector<Vector3d> normal(s.points.size(), Vector3d::Zero());
     for (std::size_t t = 0; t < s.triangles.size(); ++t)
       for (int v : s.triangles[t]) normal[v] += raw_normal(s, static_cast<int>(t));
@@ -184,9 +171,43 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
     std::vector<Vector3d> triangle_normal(s.triangles.size());
     for (std::size_t t = 0; t < s.triangles.size(); ++t) triangle_normal[t] = raw_normal(s, static_cast<int>(t));
     const double min_cos = std::cos(kMaxNormalTurnDeg * M_PI / 180.0);
-    bool ok = false;
-    double largest = 0.0, scale = 1.0;
-    for (int attempt = 0; attempt <= kHalvings && !ok; ++attempt, scale *= 0.5) {
+
+    // The offsets d_k of the patches for the current weights.
+    auto solve = [&] {
+      // Areas of the movable part of each patch: the triangles' area shared out to their movable
+      // vertices (a third each), so a junction-bound strip counts for less than its full area.
+      Eigen::VectorXd area = Eigen::VectorXd::Zero(np);
+      for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+        const double a = 0.5 * triangle_normal[t].norm();
+        for (int v : s.triangles[t]) area[patch[t]] += weight[v] * a / 3.0;
+      }
+      // C d = deficit, C(i, k) = +A_k when tissue i is p of patch k, -A_k when it is q; each row
+      // divided by the tissue's reference volume, so that where held vertices leave no exact
+      // solution the least-squares one weighs every tissue's relative error alike.
+      Eigen::MatrixXd C = Eigen::MatrixXd::Zero(nc, np);
+      Eigen::VectorXd deficit(nc);
+      for (int i = 0; i < nc; ++i) {
+        const int id = constrained[i];
+        const double ref = reference.at(id);
+        deficit[i] = (ref - result.volume_after_mm3.at(id)) / ref;
+        for (int k = 0; k < np; ++k) {
+          if (pairs[k].first == id) C(i, k) = area[k] / ref;
+          if (pairs[k].second == id) C(i, k) = -area[k] / ref;
+        }
+      }
+      // Least norm in sum A_k d_k^2: d = W^-1 C^T (C W^-1 C^T)^+ deficit, W = diag(A).
+      Eigen::VectorXd inv_area(np);
+      for (int k = 0; k < np; ++k) inv_area[k] = area[k] > 0.0 ? 1.0 / area[k] : 0.0;
+      const Eigen::MatrixXd CWinv = C * inv_area.asDiagonal();
+      const Eigen::MatrixXd M = CWinv * C.transpose();
+      const Eigen::VectorXd lambda = M.completeOrthogonalDecomposition().solve(deficit);
+      return Eigen::VectorXd(CWinv.transpose() * lambda);
+    };
+    // Moves each movable vertex by scale * d of its patch along its area-weighted normal there;
+    // true if no triangle turns over, the smallest angle stays and the surface stays valid, else
+    // `bad` lists the triangles that broke one of these.
+    double largest = 0.0;
+    auto attempt = [&](const Eigen::VectorXd& d, double scale, std::vector<int>& bad) {
       s.points = before;
       largest = 0.0;
       for (std::size_t v = 0; v < s.points.size(); ++v) {
@@ -195,14 +216,69 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
         s.points[v] += move * normal[v].normalized();
         largest = std::max(largest, std::abs(move));
       }
-      // Kept only if no triangle turns over, the smallest angle stays and the surface stays valid.
-      ok = true;
-      for (std::size_t t = 0; t < s.triangles.size() && ok; ++t) {
+      bad.clear();
+      for (std::size_t t = 0; t < s.triangles.size(); ++t) {
         const Vector3d n = raw_normal(s, static_cast<int>(t));
-        ok = n.dot(triangle_normal[t]) > min_cos * n.norm() * triangle_normal[t].norm();
+        if (!(n.dot(triangle_normal[t]) > min_cos * n.norm() * triangle_normal[t].norm()) ||
+            triangle_min_angle_deg(s, s.triangles[t]) < min_angle_before)
+          bad.push_back(static_cast<int>(t));
       }
-      if (ok) ok = min_triangle_angle_deg(s) >= min_angle_before;
-      if (ok) ok = check_surface(s, nullptr, PairSearch::Grid).valid();
+      std::vector<int> intersecting;
+      const bool valid = check_surface(s, &intersecting, PairSearch::Grid).valid();
+      bad.insert(bad.end(), intersecting.begin(), intersecting.end());
+      return valid && bad.empty();
+    };
+    // Where a round breaks the surface (a thin gap closing, a fold turning over), the vertices of
+    // those triangles and their neighbours stop moving and the offsets are solved again, so that
+    // one tight spot among thousands of islands does not hold every patch back; after
+    // kFreezings of these, the round is retried at half its offsets, then undone.
+    std::vector<int> bad;
+    bool ok = false;
+    Eigen::VectorXd d = solve();
+    // Vertices whose move would exceed their cap are held too, and the offsets solved again.
+    for (int capping = 0; capping < kFreezings; ++capping) {
+      bool over = false;
+      for (std::size_t v = 0; v < s.points.size(); ++v)
+        if (weight[v] > 0.0 && std::abs(weight[v] * d[vertex_patch[v]]) > max_move[v]) {
+          weight[v] = 0.0;
+          ++result.frozen_vertices;
+          over = true;
+        }
+      if (!over) break;
+      d = solve();
+    }
+    for (int freezing = 0; !ok; ++freezing) {
+      ok = attempt(d, 1.0, bad);
+      if (ok || freezing == kFreezings || bad.empty()) break;
+      for (int t : bad)
+        for (int v : s.triangles[t]) {
+          if (weight[v] > 0.0) ++result.frozen_vertices;
+          weight[v] = 0.0;
+          for (int w : neighbours[v]) {
+            if (weight[w] > 0.0) ++result.frozen_vertices;
+            weight[w] = 0.0;
+          }
+        }
+      d = solve();
+    }
+    double scale = 0.5;
+    for (int halving = 0; halving < kHalvings && !ok; ++halving, scale *= 0.5) ok = attempt(d, scale, bad);
+    // A round must also bring the tissues closer to their references (with vertices held, the
+    // offsets are a least-squares compromise that could trade one tissue for another): the sum of
+    // the relative errors falls, and no tissue's grows by more than kErrorSlack plus a small part
+    // of that sum (a large step is not linear: a growing ball takes more than its first-order
+    // volume from its neighbour).
+    std::map<int, double> volumes;
+    if (ok) {
+      volumes = enclosed_volumes(s);
+      double sum_before = 0.0, sum_after = 0.0;
+      for (const auto& [id, ref] : reference) sum_before += std::abs(result.volume_after_mm3.at(id) / ref - 1.0);
+      for (const auto& [id, ref] : reference) {
+        const double e0 = std::abs(result.volume_after_mm3.at(id) / ref - 1.0), e1 = std::abs(volumes.at(id) / ref - 1.0);
+        sum_after += e1;
+        ok = ok && e1 <= e0 + kErrorSlack + kErrorSlackOfSum * sum_before;
+      }
+      ok = ok && sum_after < sum_before;
     }
     if (!ok) {
       s.points = before;
@@ -211,7 +287,7 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
     }
     ++result.rounds;
     result.max_offset_mm = std::max(result.max_offset_mm, largest);
-    result.volume_after_mm3 = enclosed_volumes(s);
+    result.volume_after_mm3 = volumes;
   }
   return result;
 }

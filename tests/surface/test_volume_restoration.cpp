@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <tuple>
 
 using namespace tissuemesh;
@@ -50,4 +51,30 @@ TEST(VolumeRestoration, BadReferenceIsAnInputError) {
   TriSurface s = remeshed(nested_spheres(), 2, 150).surface;
   EXPECT_THROW(restore_volumes(s, {{3, 100.0}}), InputError);
   EXPECT_THROW(restore_volumes(s, {{1, -1.0}}), InputError);
+}
+
+// Two balls 0.5 mm apart in a third tissue: asked for 45 % more volume, ball 1 cannot grow where
+// it faces ball 2 without the two surfaces crossing. The vertices there are held and the rest of
+// ball 1 grows instead: the volumes are met, the surface stays intersection free.
+TEST(VolumeRestoration, ATightSpotIsHeldWhileTheRestMoves) {
+  const LabelImage image = make_image({72, 20, 20}, {0.5, 1.0, 1.0}, [](int i, int j, int k) {
+    if (i < 2 || i >= 70 || j < 1 || j >= 19 || k < 1 || k >= 19) return 0;
+    const Eigen::Vector3d p(0.5 * (i + 0.5), j + 0.5, k + 0.5);
+    if ((p - Eigen::Vector3d(10.5, 10.0, 10.0)).norm() < 6.0) return 1;
+    if ((p - Eigen::Vector3d(23.0, 10.0, 10.0)).norm() < 6.0) return 2;
+    return 3;
+  });
+  TriSurface s = remeshed(image, 3, 500).surface;
+  ASSERT_TRUE(check_surface(s).valid());
+  const std::map<int, double> before = enclosed_volumes(s);
+  const std::map<int, double> reference = {{1, 1.45 * before.at(1)}, {2, before.at(2)}, {3, before.at(3)}};
+  const double min_angle = surface_quality(s).min_angle_deg;
+
+  const VolumeRestoration r = restore_volumes(s, reference);
+  std::cout << "[ surface  ] " << r.rounds << " rounds, " << r.frozen_vertices << " vertices held, largest move "
+            << r.max_offset_mm << " mm; ball 1 " << r.volume_after_mm3.at(1) / reference.at(1) - 1.0 << "\n";
+  EXPECT_GT(r.frozen_vertices, 0u);
+  for (const auto& [id, v] : reference) EXPECT_NEAR(r.volume_after_mm3.at(id) / v, 1.0, 1e-3) << "tissue " << id;
+  EXPECT_TRUE(check_surface(s).valid());
+  EXPECT_GE(surface_quality(s).min_angle_deg, min_angle);
 }
