@@ -13,6 +13,7 @@ void Mesh3Optimisation::read(YamlMap& m) {
   remove_boundary_slivers_deg = m.in_range("remove_boundary_slivers_deg", remove_boundary_slivers_deg, 0.0, 30.0);
   flip_slivers_below_deg = m.in_range("flip_slivers_below_deg", flip_slivers_below_deg, 0.0, 60.0);
   interface_flips = m.boolean("interface_flips", interface_flips);
+  split_relabels = interface_flips;
   smooth_slivers_below_deg = m.in_range("smooth_slivers_below_deg", smooth_slivers_below_deg, 0.0, 60.0);
   smooth_near_planar_deg = m.in_range("smooth_near_planar_deg", smooth_near_planar_deg, 0.0, 30.0);
   open_boundary_pinches = m.boolean("open_boundary_pinches", open_boundary_pinches);

@@ -36,6 +36,10 @@ struct Mesh3Optimisation {
   /// Let those flips give a flat wedge on an interface to the neighbouring tissue (moves the
   /// interface by the wedge's thickness; the moved volume is reported).
   bool interface_flips = true;
+  /// Let the edge splits (tets still under 10 degrees) do the same before a split
+  /// (sliver_splits.h). Not a config key: it follows interface_flips, except where a caller keeps
+  /// the surface and allows only these last few relabels (volume/surface_tetgen.h).
+  bool split_relabels = true;
   /// Then move the vertices of tets with a dihedral below this (degrees) to raise the smallest
   /// angle around them (sliver_smoothing.h): vertices inside one tissue freely, vertices on a
   /// flat boundary or interface within its plane; interfaces, boundary and volumes unchanged.

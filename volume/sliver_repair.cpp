@@ -32,7 +32,7 @@ SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std
   // report), not the smoothing's higher target: meshes without such tets stay as they were.
   if (options.smooth_slivers_below_deg > 0)
     r.sliver_splits = split_slivers(mesh, std::min(kSplitSliversBelowDeg, options.smooth_slivers_below_deg),
-                                    options.interface_flips);
+                                    options.split_relabels);
   // Last, so that no later step changes the outer boundary it leaves manifold.
   if (options.open_boundary_pinches) r.boundary_pinches = tissuemesh::open_boundary_pinches(mesh);
   return r;

@@ -101,6 +101,11 @@ SurfaceTetgenResult mesh_surface_with_tetgen(const TriSurface& surface,
   Mesh3Optimisation keep_surface = params.optimise;
   keep_surface.remove_boundary_slivers_deg = 0.0;
   keep_surface.interface_flips = false;
+  // The splits may still give a flat wedge under 10 degrees to the tissue around one of its
+  // edges (when the config allows interface flips): the surface then moves by that wedge, of
+  // near-zero volume, where TetGen had to fill a crease of it with a flat tet of four surface
+  // nodes that nothing else that keeps the surface can remove.
+  keep_surface.split_relabels = params.optimise.interface_flips;
   keep_surface.smooth_near_planar_deg = 0.0;
   result.repair = repair_slivers(result.mesh, keep_surface, result.warnings);
   stage.note(std::to_string(result.mesh.tets.size()) + " tets, " + std::to_string(result.mesh.points.size()) +
