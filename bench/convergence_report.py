@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
-"""Table and plot of bench/bench_convergence.sh's records (one JSON object per solve and line).
+"""Records, table and plot of bench/bench_convergence.sh (one JSON object per solve and line).
 
-Usage: convergence_report.py RECORDS.jsonl [--svg OUT.svg]
+Usage: convergence_report.py record DIR BUDGET ELEMENT MESH_SECONDS SOLVE_SECONDS
+       convergence_report.py table RECORDS.jsonl [--svg OUT.svg]
 
-Prints a Markdown table (per budget and element: tets, nodes, solve time in s, peak memory in MiB,
+`record` prints the record of one solve from DIR/mesh/report.json and DIR/ELEMENT/solve.json.
+`table` prints a Markdown table (per budget and element: tets, nodes, solve time in s, peak memory in MiB,
 max |u| and the tumour's centroid displacement in mm, each as a relative difference to the finest
 level of the same element and to its Richardson extrapolation) and one line per element and
-quantity on the extrapolation. With --svg writes the tumour's centroid displacement against tets
+quantity on the extrapolation, the solver's counts, and a table of the meshes (vertices, tets,
+minimum dihedral, `mesh` wall time, each tissue's volume against its voxels). With --svg writes the tumour's centroid displacement against tets
 (log axis), one line per element, the extrapolated values (else the finest level) dashed.
 
 Richardson extrapolation (Roache, "Quantification of uncertainty in computational fluid
@@ -66,7 +69,7 @@ def rel(a, b):
 
 def svg_plot(by_element, extrap, path):
     """Tumour centroid displacement [mm] against tets on a log axis."""
-    W, H, L, R, T, B = 720, 440, 80, 200, 40, 60
+    W, H, L, R, T, B = 760, 440, 80, 240, 40, 60
     pts = [(r["tets"], r["tumor_u_magnitude_mm"]) for rs in by_element.values() for r in rs]
     refs = [(el, e) for el, e in extrap.items()]
     ys = [y for _, y in pts] + [e["value"] for _, e in refs]
@@ -133,11 +136,39 @@ def svg_plot(by_element, extrap, path):
         f.write("\n".join(o) + "\n")
 
 
+def record(d, budget, element, mesh_s, wall_s):
+    m = json.load(open(f"{d}/mesh/report.json"))["result"]["volume_mesh"]
+    s = json.load(open(f"{d}/{element}/solve.json"))
+    v, r = s["solver"], s["results"]
+    tumor = next(t for t in r["tissues"] if t["name"] == "tumor")
+    return {"budget": budget, "element": element, "vertices": json.load(open(f"{d}/mesh/report.json"))["result"]["vertices"],
+            "tets": s["model"]["elements"], "nodes": s["model"]["nodes"], "free_dofs": v["free_dofs"],
+            "min_dihedral_deg": m["quality"]["total"]["min_dihedral_deg"],
+            "tets_below_10deg": m["quality"]["total"]["tets_below_10deg"],
+            "volume_error_rel": {t["name"]: t["volume_error_rel"] for t in m["quality"]["tissues"]},
+            "mesh_wall_s": mesh_s, "solve_wall_s": wall_s, "solver_s": v["seconds"], "peak_mib": s["peak_memory_mib"],
+            "increments": v["increments_attempted"], "iterations": v["total_iterations"],
+            "factorisations": v["factorisations"], "failed_factorisations": v["failed_factorisations"],
+            "max_u_mm": r["max_displacement_mm"], "tumor_u_mm": tumor["centroid_displacement_mm"],
+            "tumor_u_magnitude_mm": tumor["centroid_displacement_magnitude_mm"]}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("records")
-    ap.add_argument("--svg")
+    sub = ap.add_subparsers(dest="command", required=True)
+    rec = sub.add_parser("record")
+    rec.add_argument("dir")
+    rec.add_argument("budget", type=int)
+    rec.add_argument("element")
+    rec.add_argument("mesh_seconds", type=float)
+    rec.add_argument("solve_seconds", type=float)
+    tab = sub.add_parser("table")
+    tab.add_argument("records")
+    tab.add_argument("--svg")
     a = ap.parse_args()
+    if a.command == "record":
+        print(json.dumps(record(a.dir, a.budget, a.element, a.mesh_seconds, a.solve_seconds)))
+        return
     records = [json.loads(line) for line in open(a.records) if line.strip()]
     by_element = {}
     for r in records:
@@ -172,18 +203,26 @@ def main():
             print(name + "Richardson extrapolation not applicable: " + e["why"])
     print("- finest levels: " + "; ".join(f"{ELEMENTS.get(el, el)} {rs[-1]['budget']:,} vertices, {rs[-1]['tets']:,} tets"
                                            for el, rs in by_element.items()))
-    print("- per solve (budget element: increments, Newton iterations, factorisations (failed), wall s, mesh wall s, "
-          "min dihedral deg, tumour volume error): " +
+    print("- per solve (budget element: load increments, Newton iterations, factorisations (of which failed), "
+          "command wall time s): " +
           "; ".join(f"{r['budget']} {r['element']}: {r['increments']}, {r['iterations']}, {r['factorisations']} "
-                    f"({r['failed_factorisations']}), {r['solve_wall_s']:.1f}, {r['mesh_wall_s']:.1f}, "
-                    f"{r['min_dihedral_deg']:.2f}, {100 * r['tumor_volume_error_rel']:+.2f} %"
+                    f"({r['failed_factorisations']}), {r['solve_wall_s']:.1f}"
                     for r in sorted(records, key=lambda r: (r["budget"], r["element"]))))
+    print()
+    meshes = {r["budget"]: r for r in records}
+    names = list(next(iter(meshes.values()))["volume_error_rel"])
+    print("| budget [vertices] | vertices | tets | min dihedral [deg] | tets < 10 deg | `mesh` wall [s] | volume error: "
+          + " / ".join(names) + " [%] |")
+    print("|---|---|---|---|---|---|---|")
+    for b, r in sorted(meshes.items()):
+        print(f"| {b:,} | {r['vertices']:,} | {r['tets']:,} | {r['min_dihedral_deg']:.2f} | {r['tets_below_10deg']} "
+              f"| {r['mesh_wall_s']:.1f} | " + " / ".join(f"{100 * r['volume_error_rel'][n]:+.2f}" for n in names) + " |")
     if a.svg:
         refs = {}
         for el, rs in by_element.items():
             e = ex[(el, "tumor_u_magnitude_mm")]
             refs[el] = ({"value": e["f_star"], "label": f"extrapolated (p = {e['p']:.2f})"} if e["applicable"] else
-                        {"value": rs[-1]["tumor_u_magnitude_mm"], "label": f"finest, {rs[-1]['tets'] // 1000}K tets"})
+                        {"value": rs[-1]["tumor_u_magnitude_mm"], "label": f"finest level, {rs[-1]['tets']:,} tets"})
         svg_plot(by_element, refs, a.svg)
         print(f"\nplot: {a.svg}")
 
