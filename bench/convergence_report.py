@@ -203,10 +203,10 @@ def main():
             print(name + "Richardson extrapolation not applicable: " + e["why"])
     print("- finest levels: " + "; ".join(f"{ELEMENTS.get(el, el)} {rs[-1]['budget']:,} vertices, {rs[-1]['tets']:,} tets"
                                            for el, rs in by_element.items()))
-    print("- per solve (budget element: load increments, Newton iterations, factorisations (of which failed), "
+    print("- per solve (budget element: load increments, Newton iterations, factorisations (+ failed attempts), "
           "command wall time s): " +
           "; ".join(f"{r['budget']} {r['element']}: {r['increments']}, {r['iterations']}, {r['factorisations']} "
-                    f"({r['failed_factorisations']}), {r['solve_wall_s']:.1f}"
+                    f"(+{r['failed_factorisations']}), {r['solve_wall_s']:.1f}"
                     for r in sorted(records, key=lambda r: (r["budget"], r["element"]))))
     print()
     meshes = {r["budget"]: r for r in records}
