@@ -1,9 +1,12 @@
 # Shared set-up of the bench/*.sh scripts (sourced, not run): the repository root as the working
 # directory, the built executable, a work directory removed on exit with the default phantom in it,
 # median() (of numbers on stdin, one per line), mesh_timed() and reference_timed().
+# EXE and REFERENCE, when set in the environment, replace the build's executable and machine
+# reference (e.g. copies kept from one commit while the build tree moves on); give absolute paths,
+# as the working directory changes to the repository root.
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-EXE=./build/app/tissuemesh
-REFERENCE=./build/bench/machine_reference
+EXE=${EXE:-./build/app/tissuemesh}
+REFERENCE=${REFERENCE:-./build/bench/machine_reference}
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 $EXE phantom --out "$WORK/phantom.nii.gz" > /dev/null
