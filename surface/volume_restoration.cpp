@@ -158,10 +158,18 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
   const int np = static_cast<int>(pairs.size()), nc = static_cast<int>(constrained.size());
   if (np == 0 || nc == 0) return result;
 
+  auto error = [&](const std::map<int, double>& volumes, int id) {
+    return std::abs(volumes.at(id) / reference.at(id) - 1.0);
+  };
   auto within = [&](const std::map<int, double>& volumes) {
     for (const auto& [id, ref] : reference)
-      if (std::abs(volumes.at(id) / ref - 1.0) > tolerance_rel) return false;
+      if (error(volumes, id) > tolerance_rel) return false;
     return true;
+  };
+  // A vertex held in place for the remaining rounds (counted once).
+  auto hold = [&](int v) {
+    if (weight[v] > 0.0) ++result.frozen_vertices;
+    weight[v] = 0.0;
   };
   for (int round = 0; round < max_rounds && !within(result.volume_after_mm3); ++round) {
     std::vector<Vector3d> normal(s.points.size(), Vector3d::Zero());
@@ -240,8 +248,7 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
       bool over = false;
       for (std::size_t v = 0; v < s.points.size(); ++v)
         if (weight[v] > 0.0 && std::abs(weight[v] * d[vertex_patch[v]]) > max_move[v]) {
-          weight[v] = 0.0;
-          ++result.frozen_vertices;
+          hold(static_cast<int>(v));
           over = true;
         }
       if (!over) break;
@@ -252,12 +259,8 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
       if (ok || freezing == kFreezings || bad.empty()) break;
       for (int t : bad)
         for (int v : s.triangles[t]) {
-          if (weight[v] > 0.0) ++result.frozen_vertices;
-          weight[v] = 0.0;
-          for (int w : neighbours[v]) {
-            if (weight[w] > 0.0) ++result.frozen_vertices;
-            weight[w] = 0.0;
-          }
+          hold(v);
+          for (int w : neighbours[v]) hold(w);
         }
       d = solve();
     }
@@ -272,9 +275,9 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
     if (ok) {
       volumes = enclosed_volumes(s);
       double sum_before = 0.0, sum_after = 0.0;
-      for (const auto& [id, ref] : reference) sum_before += std::abs(result.volume_after_mm3.at(id) / ref - 1.0);
+      for (const auto& [id, ref] : reference) sum_before += error(result.volume_after_mm3, id);
       for (const auto& [id, ref] : reference) {
-        const double e0 = std::abs(result.volume_after_mm3.at(id) / ref - 1.0), e1 = std::abs(volumes.at(id) / ref - 1.0);
+        const double e0 = error(result.volume_after_mm3, id), e1 = error(volumes, id);
         sum_after += e1;
         ok = ok && e1 <= e0 + kErrorSlack + kErrorSlackOfSum * sum_before;
       }
