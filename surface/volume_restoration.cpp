@@ -4,6 +4,7 @@
 #include "surface/volume_restoration.h"
 
 #include "core/errors.h"
+#include "core/union_find.h"
 #include "surface/surface_checks.h"
 
 #include <Eigen/Dense>
@@ -26,6 +27,7 @@ constexpr double kMaxNormalTurnDeg = 60.0;
 constexpr int kTaperRings = 3;
 constexpr double kFlatDeg = 10.0;   // faces within this of the vertex normal: full offset
 constexpr double kBentDeg = 40.0;   // a face this far off: none
+constexpr double kBentIslandDeg = 80.0;  // the same on a component without junctions (no rim to stretch)
 constexpr int kFreezings = 8;       // a round that breaks the surface is solved again without the spot this often
 constexpr int kHalvings = 3;        // and then retried at half its offsets this often
 
@@ -142,9 +144,24 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
       const Vector3d f = raw_normal(s, static_cast<int>(t)).normalized();
       for (int v : s.triangles[t]) spread[v] = std::min(spread[v], f.dot(n[v].normalized()));
     }
-    const double flat = std::cos(kFlatDeg * M_PI / 180.0), bent = std::cos(kBentDeg * M_PI / 180.0);
+    // A component of the surface that touches no junction (an island inside one other tissue, a
+    // marker clip) is a closed surface moving as a whole: inflating it along its normals grows it
+    // like a ball, so however coarse it is, it may bend much further before its vertices stay.
+    std::vector<int> component = singleton_sets(s.points.size());
+    for (const auto& t : s.triangles)
+      for (int e = 1; e < 3; ++e) {
+        const int a = find_root(component, t[0]), b = find_root(component, t[e]);
+        if (a != b) component[std::max(a, b)] = std::min(a, b);
+      }
+    std::vector<char> has_junction(s.points.size(), 0);
     for (std::size_t v = 0; v < s.points.size(); ++v)
+      if (vertex_patch[v] == -1) has_junction[find_root(component, static_cast<int>(v))] = 1;
+    const double flat = std::cos(kFlatDeg * M_PI / 180.0);
+    for (std::size_t v = 0; v < s.points.size(); ++v) {
+      const bool island = !has_junction[find_root(component, static_cast<int>(v))];
+      const double bent = std::cos((island ? kBentIslandDeg : kBentDeg) * M_PI / 180.0);
       weight[v] *= std::clamp((spread[v] - bent) / (flat - bent), 0.0, 1.0);
+    }
   }
   // And 0 at the triangles within kFrozenMarginDeg of the smallest angle: those set Table 1's
   // minimum, which the restoration must not lower.

@@ -11,7 +11,9 @@
 // moves once, consistently for both its sides. Vertices move along their area-weighted normal in
 // the patch, weighted: 0 on junction curves (they belong to several patches), 1/3 and 2/3 on the
 // next two rings, less where the patch bends at the vertex by more than 10 degrees (none beyond
-// 40: the rim of a thin sheet, where diverging normals would stretch the triangles), and 0 at the
+// 40: the rim of a thin sheet, where diverging normals would stretch the triangles; beyond 80 on a
+// component of the surface that touches no junction, a closed island such as a marker clip, which
+// inflates like a ball however few vertices it has), and 0 at the
 // triangles within 2 degrees of the surface's smallest angle. The areas in the solve carry the
 // same weights; the volumes are then measured and the offsets solved again, a few rounds.
 //
