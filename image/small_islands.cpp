@@ -58,16 +58,30 @@ bool small_component_at(const LabelImage& ids, const std::vector<std::size_t>& s
 }
 
 // One pass over the components of `ids` as they are now; returns the islands relabelled and
-// appends the voxels it relabelled to `changed`.
-std::size_t absorb_once(LabelImage& ids, std::size_t min_voxels, std::vector<std::size_t>& changed) {
+// appends the voxels it relabelled to `changed`. A tissue's largest component (the first of
+// equals) is never an island, whatever its size: `kept` gets tissue id -> its voxels when it is
+// under min_voxels.
+std::size_t absorb_once(LabelImage& ids, std::size_t min_voxels, std::vector<std::size_t>& changed,
+                        std::map<int, std::size_t>& kept) {
   const ComponentMap map = find_components(ids);
-  std::vector<std::vector<std::size_t>> voxels(map.components.size());
+  std::map<std::int32_t, std::size_t> largest;  // tissue id -> index of its largest component
+  for (std::size_t c = 0; c < map.components.size(); ++c) {
+    const auto [it, added] = largest.emplace(map.components[c].tissue_id, c);
+    if (!added && map.components[c].voxels > map.components[it->second].voxels) it->second = c;
+  }
+  std::vector<char> island(map.components.size(), 0);
   bool any = false;
-  for (std::size_t c = 0; c < map.components.size(); ++c) any = any || map.components[c].voxels < min_voxels;
+  for (std::size_t c = 0; c < map.components.size(); ++c) {
+    island[c] = map.components[c].voxels < min_voxels && largest.at(map.components[c].tissue_id) != c;
+    any = any || island[c];
+  }
+  for (const auto& [id, c] : largest)
+    if (map.components[c].voxels < min_voxels) kept[id] = map.components[c].voxels;
   if (!any) return 0;
+  std::vector<std::vector<std::size_t>> voxels(map.components.size());
   for (std::size_t v = 0; v < map.component_of_voxel.size(); ++v) {
     const std::int32_t c = map.component_of_voxel[v];
-    if (c >= 0 && map.components[static_cast<std::size_t>(c)].voxels < min_voxels) voxels[static_cast<std::size_t>(c)].push_back(v);
+    if (c >= 0 && island[static_cast<std::size_t>(c)]) voxels[static_cast<std::size_t>(c)].push_back(v);
   }
   const int nx = ids.dims[0], ny = ids.dims[1], nz = ids.dims[2];
   std::size_t absorbed = 0;
@@ -141,6 +155,7 @@ void IslandAbsorption::add(const IslandAbsorption& later) {
   volume_mm3 += later.volume_mm3;
   complete = later.complete;
   min_voxels = later.min_voxels;
+  for (const auto& [id, n] : later.kept_whole) kept_whole[id] = n;
   for (const TissueIslands& l : later.tissues) {
     auto it = std::lower_bound(tissues.begin(), tissues.end(), l.tissue_id,
                                [](const TissueIslands& t, int id) { return t.tissue_id < id; });
@@ -180,7 +195,8 @@ IslandAbsorption absorb_small_islands(LabelImage& ids, std::size_t min_voxels, c
       break;
     }
     seeds.clear();
-    out.complete = absorb_once(ids, min_voxels, seeds) == 0;
+    out.kept_whole.clear();
+    out.complete = absorb_once(ids, min_voxels, seeds, out.kept_whole) == 0;
   }
   out.tissues = count_by_tissue(before, ids);
   for (const TissueIslands& t : out.tissues) {

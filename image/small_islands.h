@@ -1,7 +1,9 @@
 // Absorption of sub-resolution islands before meshing (both pipelines).
 //
 // Every 6-connected component of a tissue (image/label_components.h) with fewer than `min_voxels`
-// voxels takes the region most of its face neighbours belong to (ties: the lowest id; the image
+// voxels, except the tissue's largest (the first in find_components' order of equals: a tissue is
+// never removed whole, so a small tumour or a marker clip stays and is reported as kept), takes
+// the region most of its face neighbours belong to (ties: the lowest id; the image
 // border counts as outside, 0). Components are visited in find_components' order and relabelled
 // in place; passes repeat (at most 10) until none is left, so an island inside another small
 // island ends with the region around both. Cavities of outside (id 0) are not touched.
@@ -33,9 +35,12 @@ struct IslandAbsorption {
   double volume_mm3 = 0.0;  ///< their volume
   bool complete = true;     ///< no island left (false: the pass cap ended it, a pathological labeling)
   std::vector<TissueIslands> tissues;  ///< tissues that lost voxels, by ascending id
+  /// Tissues whose largest component is under min_voxels and kept: tissue id -> its voxels (as of
+  /// the last full pass; a later absorption's entries replace these tissue by tissue).
+  std::map<int, std::size_t> kept_whole;
 
   /// Adds the counts of a later absorption (e.g. of the next repair round) tissue by tissue;
-  /// `complete` and `min_voxels` become those of `later`.
+  /// `complete` and `min_voxels` become those of `later`, its kept_whole entries are merged in.
   void add(const IslandAbsorption& later);
 };
 

@@ -148,8 +148,11 @@ nlohmann::json islands_json(const IslandAbsorption& a, const std::vector<std::st
     tissues.push_back({{"tissue", tissue_name(t.tissue_id, names)}, {"components", t.islands}, {"voxels", t.voxels},
                        {"volume_mm3", t.volume_mm3}, {"into", into}});
   }
+  nlohmann::json kept = nlohmann::json::array();
+  for (const auto& [id, n] : a.kept_whole) kept.push_back({{"tissue", tissue_name(id, names)}, {"voxels", n}});
   return {{"below_voxels", a.min_voxels}, {"components", a.islands}, {"voxels", a.voxels},
-          {"volume_mm3", a.volume_mm3}, {"complete", a.complete}, {"tissues", tissues}};
+          {"volume_mm3", a.volume_mm3}, {"complete", a.complete}, {"tissues", tissues},
+          {"kept_whole", kept}};
 }
 
 std::string islands_text(const IslandAbsorption& a, const std::vector<std::string>& names) {
@@ -165,6 +168,9 @@ std::string islands_text(const IslandAbsorption& a, const std::vector<std::strin
     for (const auto& [id, n] : t.voxels_into) s << " " << tissue_name(id, names) << " " << n;
     s << " voxels\n";
   }
+  for (const auto& [id, n] : a.kept_whole)
+    s << "  " << tissue_name(id, names) << ": its largest component (" << n << " voxels) is under the threshold and kept"
+      << " (a tissue is never removed whole)\n";
   return s.str();
 }
 

@@ -74,9 +74,10 @@ TEST(SmallIslands, IslandsUnderTheThresholdTakeTheirSurroundingsLargerOnesStay) 
   fill(img, 1, 7, 11, 7, 11, 7, 11);   // 64 voxels of tissue 1
   fill(img, 3, 2, 5, 8, 11, 2, 5);     // 26 voxels of tissue 3 ...
   fill(img, 1, 3, 4, 9, 10, 3, 4);     // ... around one of tissue 1: both go, the inner one too
+  fill(img, 3, 10, 14, 1, 5, 1, 5);    // tissue 3's largest component (64 voxels)
   const LabelImage before = img;
   const IslandAbsorption r = absorb_small_islands(img, 30);
-  EXPECT_EQ(r.voxels, 28u);  // 1 + 26 + 1; the 64-voxel island stays
+  EXPECT_EQ(r.voxels, 28u);  // 1 + 26 + 1; the 64-voxel islands stay
   EXPECT_GE(r.islands, 3u);
   std::size_t changed_to_2 = 0;
   for (std::size_t v = 0; v < img.labels.size(); ++v) {
@@ -103,8 +104,10 @@ TEST(SmallIslands, WhatWentIsCountedPerTissueAgainstTheInput) {
   fill(img, 1, 7, 11, 7, 11, 7, 11);
   fill(img, 3, 2, 5, 8, 11, 2, 5);
   fill(img, 1, 3, 4, 9, 10, 3, 4);
+  fill(img, 3, 10, 14, 1, 5, 1, 5);
   const IslandAbsorption r = absorb_small_islands(img, 30);
   EXPECT_EQ(r.min_voxels, 30u);
+  EXPECT_TRUE(r.kept_whole.empty());
   EXPECT_EQ(r.islands, 3u);
   EXPECT_EQ(r.voxels, 28u);
   EXPECT_DOUBLE_EQ(r.volume_mm3, 28 * 0.125);
@@ -142,6 +145,7 @@ TEST(SmallIslands, TheMajorityOfFaceNeighboursWinsAndTheBorderCountsAsOutside) {
   // A one-voxel island of tissue 3 in a corner of the image: three neighbours outside the
   // image (outside, 0), three of tissue 1.
   fill(img, 3, 0, 1, 0, 1, 0, 1);
+  fill(img, 3, 7, 9, 7, 9, 1, 3);  // tissue 3's largest component (8 voxels), which stays
   const IslandAbsorption r = absorb_small_islands(img, 2);
   EXPECT_EQ(r.islands, 2u);
   EXPECT_EQ(img.at(4, 4, 5), 2);
@@ -153,11 +157,41 @@ TEST(SmallIslands, AnIslandWhoseSmallShellTookItsIdStaysTissue) {
   // A one-voxel tissue-2 island inside a 26-voxel shell of tissue 1, inside tissue 2. The shell
   // (lower id) goes first and becomes tissue 2, so every neighbour of the inner voxel is then of
   // its own tissue: it is part of the surrounding tissue now and must not become outside.
+  // Tissue 1's largest component is a slab at i < 2, apart from the shell.
   LabelImage img = block_of(2, 9);
+  fill(img, 1, 0, 2, 0, 9, 0, 9);
   fill(img, 1, 3, 6, 3, 6, 3, 6);
   fill(img, 2, 4, 5, 4, 5, 4, 5);
   absorb_small_islands(img, 30);
-  for (std::size_t v = 0; v < img.labels.size(); ++v) EXPECT_EQ(img.labels[v], 2) << "voxel " << v;
+  for (int k = 0; k < 9; ++k)
+    for (int j = 0; j < 9; ++j)
+      for (int i = 2; i < 9; ++i) EXPECT_EQ(img.at(i, j, k), 2) << "voxel " << i << " " << j << " " << k;
+}
+
+TEST(SmallIslands, ATissueIsNeverRemovedWhole) {
+  // A marker clip: tissue 3 is two components of 8 and 1 voxels inside tissue 2, tissue 1 a lone
+  // voxel. At a threshold of 30 every component of 1 and 3 is under it; the largest of each stays
+  // (tissue 1's only voxel, tissue 3's 8-voxel cube), the other clip voxel goes, and the kept ones
+  // are reported with their sizes.
+  LabelImage img = block_of(2, 12);
+  fill(img, 3, 2, 4, 2, 4, 2, 4);
+  fill(img, 3, 8, 9, 8, 9, 8, 9);
+  fill(img, 1, 6, 7, 2, 3, 2, 3);
+  const LabelImage before = img;
+  const IslandAbsorption r = absorb_small_islands(img, 30);
+  EXPECT_EQ(r.islands, 1u);
+  EXPECT_EQ(r.voxels, 1u);
+  EXPECT_EQ(img.at(8, 8, 8), 2);
+  EXPECT_EQ(img.at(2, 2, 2), 3);
+  EXPECT_EQ(img.at(3, 3, 3), 3);
+  EXPECT_EQ(img.at(6, 2, 2), 1);
+  EXPECT_EQ(r.kept_whole, (std::map<int, std::size_t>{{1, 1}, {3, 8}}));
+  // Tissue 2 is far above the threshold: never reported as kept.
+  EXPECT_EQ(r.kept_whole.count(2), 0u);
+  // Again: nothing left to absorb, the same kept.
+  const IslandAbsorption again = absorb_small_islands(img, 30);
+  EXPECT_EQ(again.islands, 0u);
+  EXPECT_EQ(again.kept_whole, r.kept_whole);
 }
 
 TEST(SmallIslands, AHintedAbsorptionFindsWhatAFullOneFinds) {

@@ -126,6 +126,27 @@ TEST(SurfaceExtraction, UnfoldingReportsWhatAFullCheckFinds) {
   EXPECT_TRUE(full.valid());
 }
 
+// A marker clip of 33 voxels (a ball five voxels across) under an island threshold of 128 voxels,
+// with one stray clip voxel elsewhere: the stray voxel joins the fat, the clip itself stays (a
+// tissue is never removed whole), is reported as kept, and the surface is valid with a closed clip
+// of about its voxel volume. Before, the clip vanished and the surface failed its checks.
+TEST(SurfaceExtraction, ATissueUnderTheIslandThresholdIsKeptWhole) {
+  const LabelImage img = make_image({24, 24, 24}, {0.5, 0.5, 0.5}, [](int i, int j, int k) {
+    if (i < 2 || i >= 22 || j < 2 || j >= 22 || k < 2 || k >= 22) return 0;
+    if (i == 5 && j == 5 && k == 5) return 2;
+    const int di = i - 14, dj = j - 14, dk = k - 14;
+    return di * di + dj * dj + dk * dk <= 4 ? 2 : 1;
+  });
+  const SurfaceExtraction e = extract(img, 2, 10, 128);
+  EXPECT_EQ(e.islands.islands, 1u);
+  EXPECT_EQ(e.islands.voxels, 1u);
+  EXPECT_EQ(e.islands.kept_whole, (std::map<int, std::size_t>{{2, 33}}));
+  ASSERT_TRUE(e.checks.valid());
+  const TissueSurfaceCheck& clip = e.checks.tissues.at(1);
+  EXPECT_GT(clip.triangles, 0u);
+  EXPECT_NEAR(clip.volume_mm3, 33 * 0.125, 0.25 * 33 * 0.125);
+}
+
 TEST(LabelRepair, RandomLabelsAreMadeWellComposed) {
   // Four regions at random on 14^3 voxels: defects everywhere, and repairs that create new ones in
   // blocks already passed (the repair's later passes revisit only blocks whose voxels changed).
