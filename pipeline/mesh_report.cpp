@@ -404,7 +404,9 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                    {"flips", r.remesh->flips},
                    {"angle_smoothing_moves", r.remesh->angle_moves},
                    {"quality_smoothing_moves", r.remesh->quality_moves},
-                   {"sweeps_on_two_threads", r.remesh->partitioned_sweeps}};
+                   {"sweeps_on_two_threads", r.remesh->partitioned_sweeps},
+                   {"thickness_edge_ratio", r.thickness_edge_ratio},
+                   {"thickness_scale", r.remesh->thickness_scale}};
     if (r.hausdorff)
       j["remesh"]["hausdorff_to_extracted_mm"] = {{"symmetric", r.hausdorff->symmetric_mm()},
                                                    {"remeshed_to_extracted", r.hausdorff->a_to_b_mm},
@@ -502,6 +504,13 @@ std::string surface_job_text(const SurfaceJobResult& r) {
       << " collapses, " << r.remesh->flips << " flips, " << r.remesh->angle_moves << " angle-smoothing moves";
     if (r.remesh->quality_moves > 0) o << ", " << r.remesh->quality_moves << " quality-smoothing moves";
     o << "; " << r.remesh->partitioned_sweeps << " collapse and relaxation sweeps in two halves on two threads)\n";
+    if (r.thickness_edge_ratio > 0.0) {
+      o << "thin parts: edges at most " << fmt("%g", r.thickness_edge_ratio) << " x the local thickness";
+      if (r.remesh->thickness_scale > 1.0)
+        o << " x " << fmt("%.2f", r.remesh->thickness_scale)
+          << " (coarsened: at the ratio alone they would take more than half the vertex budget)";
+      o << "\n";
+    }
     if (r.restoration)
       o << "volume restoration: " << r.restoration->rounds << " rounds of patch offsets, largest move "
         << fmt("%.3f", r.restoration->max_offset_mm) << " mm"

@@ -3,12 +3,18 @@
 #include "pipeline/mesh_job.h"
 
 #include "core/number_format.h"
+#include "surface/thickness_size.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
 
 namespace tissuemesh {
 
 namespace {
 
-void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, Progress& progress) {
+void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, const ThicknessSize* thickness, Progress& progress) {
   if (!r.checks.valid()) return;
   if (r.quality.min_angle_deg < kMinAngleForVolumeDeg) {
     // Such slivers of triangles make CGAL's protecting balls at the junctions ever smaller: the
@@ -24,8 +30,11 @@ void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, Progress& progre
   v.size_mm = r.remesh ? r.remesh->edge_length_mm : r.quality.mean_edge_mm;  // r.quality: of r.surface()
   const ApproachField* field = r.approach ? &*r.approach : nullptr;
   const double L = v.size_mm;
-  const std::function<double(const Eigen::Vector3d&)> h = [L, field](const Eigen::Vector3d& p) {
-    return field ? L * field->relative_size(p) : L;
+  // The tets keep the thin parts' bound too (scaled as the remesher scaled it for the budget).
+  const double scale = r.remesh ? r.remesh->thickness_scale : 1.0;
+  const std::function<double(const Eigen::Vector3d&)> h = [L, field, thickness, scale](const Eigen::Vector3d& p) {
+    const double size = field ? L * field->relative_size(p) : L;
+    return thickness ? std::min(size, scale * (*thickness)(p)) : size;
   };
   v.mesher = config.volume.mesher;
   if (v.mesher == "tetgen") {
@@ -59,7 +68,7 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
   r.checks = r.extraction.checks;
   r.quality = r.extracted_quality;
   if (!config.surface.remesh() || !r.extraction.checks.valid()) {
-    mesh_volume(r, config, progress);
+    mesh_volume(r, config, nullptr, progress);
     return r;
   }
   // A stage of its own, so that every second between extraction and remeshed surface is timed
@@ -77,6 +86,29 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
     r.approach.emplace(r.extraction.surface, config.approach);
     const ApproachField* field = &*r.approach;
     options.relative_size = [field](const Eigen::Vector3d& p) { return field->relative_size(p); };
+  }
+  std::optional<ThicknessSize> thickness;
+  // Thin parts: edges bounded by the local thickness (of the tissue ids as configured; the few
+  // voxels absorbed as islands only make the bound finer next to where they were).
+  if (config.surface.thickness_edge_ratio > 0.0) {
+    auto stage = progress.stage("local thickness of the tissues");
+    // Only thicknesses whose bound may come under the edge length matter: up to twice the uniform
+    // edge of the budget (or the target edge) over the ratio (the cost of the thickness map grows
+    // with that cap). The smallest bound is a voxel.
+    double area = 0.0;
+    const TriSurface& e = r.extraction.surface;
+    for (const auto& t : e.triangles)
+      area += 0.5 * (e.points[t[1]] - e.points[t[0]]).cross(e.points[t[2]] - e.points[t[0]]).norm();
+    const double uniform = options.target_vertices > 0
+                               ? std::sqrt(2.0 * area / (std::sqrt(3.0) * options.target_vertices))
+                               : options.target_edge_mm;
+    const double cap_mm = 2.0 * uniform / config.surface.thickness_edge_ratio;
+    thickness.emplace(ids, cap_mm, config.surface.thickness_edge_ratio, ids.spacing.minCoeff());
+    stage.note(std::to_string(thickness->thin_voxels()) + " voxels under " + format_double("%.2f", cap_mm) +
+               " mm thick");
+    r.thickness_edge_ratio = config.surface.thickness_edge_ratio;
+    const ThicknessSize* t = &*thickness;
+    options.max_edge_mm = [t](const Eigen::Vector3d& p) { return (*t)(p); };
   }
   r.remesh = remesh_surface(r.extraction.surface, on_extracted, options, progress);
   if (config.surface.restore_volumes && r.remesh->checks.valid()) {
@@ -97,7 +129,7 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
     const SurfaceProjection on_remeshed(r.remesh->surface);
     r.hausdorff = hausdorff_distance(r.remesh->surface, on_remeshed, r.extraction.surface, on_extracted);
   }
-  mesh_volume(r, config, progress);
+  mesh_volume(r, config, thickness ? &*thickness : nullptr, progress);
   return r;
 }
 

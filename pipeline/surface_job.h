@@ -48,6 +48,8 @@ struct SurfaceJobResult {
   SurfaceExtraction extraction;             ///< extracted surface, repair, vertex counts and its checks
   SurfaceQuality extracted_quality;         ///< Table 1 figures of the extracted surface
   std::optional<RemeshResult> remesh;       ///< when the config asks for remeshing
+  /// surface.thickness_edge_ratio the remeshing ran with (0: sizes not bounded by thickness).
+  double thickness_edge_ratio = 0.0;
   std::optional<VolumeRestoration> restoration;  ///< with surface.restore_volumes (remesh->surface moved)
   std::optional<SurfaceDistance> hausdorff; ///< remeshed vs extracted surface
   std::optional<ApproachField> approach;    ///< when approach.enabled

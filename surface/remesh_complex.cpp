@@ -53,6 +53,7 @@ Eigen::AlignedBox3d widened_bounds(const TriSurface& in) {
 RemeshComplex::RemeshComplex(const TriSurface& in, const SurfaceProjection& projection, const RemeshOptions& options)
     : proj_(projection),
       size_(options.relative_size),
+      max_edge_(options.max_edge_mm),
       region_(widened_bounds(in)),
       cap_(kCapFactor, kCapGradation, region_),
       max_deviation_(options.max_deviation_mm),
@@ -145,8 +146,21 @@ RemeshComplex::VertexFloor RemeshComplex::vertex_floor() const {
 }
 
 double RemeshComplex::s(const Vector3d& p) const {
-  const double s0 = size_ ? size_(p) : 1.0;
+  double s0 = size_ ? size_(p) : 1.0;
+  if (max_edge_) s0 = std::min(s0, thickness_scale * max_edge_(p) / L);
   return cap_.size() == 0 ? s0 : std::min(s0, cap_(p) / L);
+}
+
+double RemeshComplex::thin_vertex_demand() const {
+  if (!max_edge_) return 0.0;
+  double sum = 0.0;
+  for (std::size_t t = 0; t < tri_.size(); ++t) {
+    if (!tri_alive_[t]) continue;
+    const Vector3d &a = x_[tri_[t][0]], &b = x_[tri_[t][1]], &c = x_[tri_[t][2]];
+    const double bound = thickness_scale * max_edge_((a + b + c) / 3.0);
+    if (bound < L) sum += area_vector(a, b, c).norm() * 2.0 / (std::sqrt(3.0) * bound * bound);
+  }
+  return sum;
 }
 
 double RemeshComplex::weighted_area() const {

@@ -56,8 +56,8 @@ namespace tissuemesh {
 class RemeshComplex {
  public:
   /// `in` is the reference surface (valid, closed per tissue); `projection` is built on it and
-  /// must outlive this object. Takes options.relative_size, options.max_deviation_mm and
-  /// options.threads.
+  /// must outlive this object. Takes options.relative_size, options.max_edge_mm,
+  /// options.max_deviation_mm and options.threads.
   RemeshComplex(const TriSurface& in, const SurfaceProjection& projection, const RemeshOptions& options);
 
   double L = 1.0;  ///< edge length where s = 1, mm
@@ -79,6 +79,11 @@ class RemeshComplex {
   VertexFloor vertex_floor() const;
   /// Integral of 1 / s^2 over the surface (each triangle once), mm^2.
   double weighted_area() const;
+  /// Vertices the thin parts ask for at edge length L: the integral of 2 / (sqrt(3) b^2) over the
+  /// triangles where options.max_edge_mm (times thickness_scale) b is under L (0 without it).
+  double thin_vertex_demand() const;
+  /// Factor (>= 1) on options.max_edge_mm: thin parts coarsened to fit a budget.
+  double thickness_scale = 1.0;
 
   // Sweeps over all edges (or vertices), in index order; each returns how many operations it did.
   // collapse_short and relax are partitioned sweeps on a large complex (remesh_partition.cpp):
@@ -329,6 +334,7 @@ class RemeshComplex {
 
   const SurfaceProjection& proj_;
   std::function<double(const Vector3d&)> size_;
+  std::function<double(const Vector3d&)> max_edge_;
   Eigen::AlignedBox3d region_;  ///< the input's bounding box, widened: the grids cover it
   GradedSizeCap cap_;
   double max_deviation_ = 0.0;

@@ -28,6 +28,10 @@ SurfaceParams SurfaceParams::from_yaml(YamlMap& m) {
   if (p.remesh_iterations < 1 || p.remesh_iterations > 100)
     throw InputError(m.where("remesh_iterations") + ": must be in 1..100, got " + std::to_string(p.remesh_iterations));
   p.restore_volumes = m.boolean("restore_volumes", p.restore_volumes);
+  p.thickness_edge_ratio = m.number("thickness_edge_ratio", p.thickness_edge_ratio);
+  if (!(p.thickness_edge_ratio >= 0.0 && p.thickness_edge_ratio <= 10.0))
+    throw InputError(m.where("thickness_edge_ratio") + ": must be in [0, 10] (edge length per mm of local thickness; 0 = off), got " +
+                     std::to_string(p.thickness_edge_ratio));
   m.finish();
   return p;
 }
@@ -40,6 +44,7 @@ void SurfaceParams::to_yaml(YAML::Emitter& out) const {
   out << YAML::Key << "target_edge_mm" << YAML::Value << target_edge_mm;
   out << YAML::Key << "remesh_iterations" << YAML::Value << remesh_iterations;
   out << YAML::Key << "restore_volumes" << YAML::Value << restore_volumes;
+  out << YAML::Key << "thickness_edge_ratio" << YAML::Value << thickness_edge_ratio;
   out << YAML::EndMap;
 }
 

@@ -8,6 +8,7 @@
 //     target_edge_mm: 0           # or a target edge length in mm (used when target_vertices is 0)
 //     remesh_iterations: 10       # split/collapse/flip/relax rounds (surface/surface_remesh.h)
 //     restore_volumes: false      # offset the remeshed patches so every tissue has its voxel volume
+//     thickness_edge_ratio: 1     # edges at most this times the local thickness of thin parts (0 = off)
 #pragma once
 
 #include "core/yaml_map.h"
@@ -25,6 +26,10 @@ struct SurfaceParams {
   /// After remeshing, offset the patches along their normals so that every tissue encloses its
   /// voxel volume again (surface/volume_restoration.h).
   bool restore_volumes = false;
+  /// Remeshed edges at most this times the local thickness of the tissues (image/local_thickness.h)
+  /// where that is under the edge length, coarsened as a whole when the thin parts would take more
+  /// than half the vertex budget (surface/thickness_size.h, surface/surface_remesh.h); 0 = off.
+  double thickness_edge_ratio = 1.0;
 
   bool remesh() const { return target_vertices > 0 || target_edge_mm > 0.0; }
 

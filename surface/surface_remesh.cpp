@@ -49,6 +49,9 @@ constexpr double kStalledAbove = 1.25;
 constexpr double kStalledProgress = 0.9;
 /// Stalled that far above the budget (a multiple of it), the final budget pass cannot meet it.
 constexpr double kHopelessAbove = 2.0;
+/// The largest part of a vertex budget the thin parts' size bounds (RemeshOptions::max_edge_mm)
+/// may ask for before they are coarsened: the rest of the surface keeps at least half.
+constexpr double kThinShare = 0.5;
 
 }  // namespace
 
@@ -75,7 +78,16 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
                                                std::to_string(floor.loop_vertices) + " on each of " +
                                                std::to_string(floor.closed_curves) + " closed junction curves, 4 on each of " +
                                                std::to_string(floor.closed_pieces) + " closed islands)");
-    m.L = std::sqrt(2.0 * m.weighted_area() / (std::sqrt(3.0) * static_cast<double>(target)));
+    const double goal = static_cast<double>(target);
+    m.L = std::sqrt(2.0 * m.weighted_area() / (std::sqrt(3.0) * goal));
+    // Thin parts bound the size absolutely (options.max_edge_mm): where they would take more
+    // than kThinShare of the budget at this L, every bound is scaled up alike, so that the rest
+    // keeps a resolution of its own. Then L is solved again with the bounds in the size field
+    // (a few fixed-point steps; the rounds correct it from the measured count).
+    const double thin = m.thin_vertex_demand();
+    if (thin > kThinShare * goal) m.thickness_scale = std::sqrt(thin / (kThinShare * goal));
+    if (options.max_edge_mm)
+      for (int k = 0; k < 5; ++k) m.L = std::sqrt(2.0 * m.weighted_area() / (std::sqrt(3.0) * goal));
   } else {
     m.L = options.target_edge_mm;
   }
@@ -232,6 +244,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   r.surface = std::move(result);
   r.checks = check_surface(r.surface);
   r.edge_length_mm = chosen->L;
+  r.thickness_scale = chosen->thickness_scale;
   r.splits = chosen->splits;
   r.collapses = chosen->collapses;
   r.flips = chosen->flips;

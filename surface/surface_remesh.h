@@ -11,8 +11,11 @@
 // improves_table1_minima, surface/surface_quality.h), and a last quality-raising smoothing when
 // Q_min is under kQualitySmoothingBelow (it never lowers the smallest angle below min(its value,
 // 30 degrees) nor adds angles under 30 degrees). Near junction edges that stay far shorter than h,
-// h is capped (surface/graded_size_cap.h). Progress: a note per round (vertices, L in mm), after
-// the polish, after a repair and after the quality smoothing.
+// h is capped (surface/graded_size_cap.h). An absolute bound from the local thickness
+// (RemeshOptions::max_edge_mm) keeps thin sheets and tubes at edges that fit them; when those would
+// take more than half the budget, all of them are scaled up by one factor (reported). Progress:
+// a note per round (vertices, L in mm), after the polish, after a repair and after the quality
+// smoothing.
 // Validity: no operation makes two triangles intersect (an exact guard), so a valid input gives an
 // intersection-free result at any budget; the result is checked again (surface/surface_checks.h)
 // and the checks returned, the caller decides. Deterministic; the same result on one thread as on
@@ -46,6 +49,9 @@ struct RemeshOptions {
   double max_deviation_mm = 0.0;
   /// Relative size s(x) in (0, 1] (the density is 1 / s^2); empty = uniform.
   std::function<double(const Eigen::Vector3d&)> relative_size;
+  /// An absolute bound on the size (mm, > 0; +infinity = none) that the budget's rescaling of L
+  /// does not change: e.g. from the local thickness of the tissues (surface/thickness_size.h).
+  std::function<double(const Eigen::Vector3d&)> max_edge_mm;
   /// Try the repair of triangles left under 30 degrees (header comment); false returns the
   /// polished result as is (what a discarded repair returns too).
   bool repair = true;
@@ -58,6 +64,8 @@ struct RemeshResult {
   TriSurface surface;
   SurfaceCheckReport checks;    ///< surface/surface_checks.h of `surface`
   double edge_length_mm = 0.0;  ///< L, the size where s = 1, after the budget rescaling
+  /// Factor (>= 1) the thin parts' size bounds were scaled by to fit the budget (1: as asked).
+  double thickness_scale = 1.0;
   std::size_t splits = 0, collapses = 0, flips = 0;
   std::size_t angle_moves = 0;  ///< vertex moves of the angle-improving smoothing (a kept repair's included)
   std::size_t quality_moves = 0;  ///< vertex moves of the final quality-raising smoothing
