@@ -505,7 +505,11 @@ std::string surface_job_text(const SurfaceJobResult& r) {
     if (r.remesh->quality_moves > 0) o << ", " << r.remesh->quality_moves << " quality-smoothing moves";
     o << "; " << r.remesh->partitioned_sweeps << " collapse and relaxation sweeps in two halves on two threads)\n";
     if (r.thickness_edge_ratio > 0.0) {
-      o << "thin parts: edges at most " << fmt("%g", r.thickness_edge_ratio) << " x the local thickness";
+      if (r.remesh->thickness_scale == 0.0)
+        o << "thin parts: not bounded by their thickness (at " << fmt("%g", r.thickness_edge_ratio)
+          << " x the local thickness they would take far more than half the vertex budget; uniform sizes instead)";
+      else
+        o << "thin parts: edges at most " << fmt("%g", r.thickness_edge_ratio) << " x the local thickness";
       if (r.remesh->thickness_scale > 1.0)
         o << " x " << fmt("%.2f", r.remesh->thickness_scale)
           << " (coarsened: at the ratio alone they would take more than half the vertex budget)";

@@ -32,6 +32,7 @@ void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, const ThicknessS
   const double L = v.size_mm;
   // The tets keep the thin parts' bound too (scaled as the remesher scaled it for the budget).
   const double scale = r.remesh ? r.remesh->thickness_scale : 1.0;
+  if (scale == 0.0) thickness = nullptr;  // dropped by the remesher
   const std::function<double(const Eigen::Vector3d&)> h = [L, field, thickness, scale](const Eigen::Vector3d& p) {
     const double size = field ? L * field->relative_size(p) : L;
     return thickness ? std::min(size, scale * (*thickness)(p)) : size;

@@ -82,7 +82,7 @@ class RemeshComplex {
   /// Vertices the thin parts ask for at edge length L: the integral of 2 / (sqrt(3) b^2) over the
   /// triangles where options.max_edge_mm (times thickness_scale) b is under L (0 without it).
   double thin_vertex_demand() const;
-  /// Factor (>= 1) on options.max_edge_mm: thin parts coarsened to fit a budget.
+  /// Factor (>= 1) on options.max_edge_mm: thin parts coarsened to fit a budget (+infinity: no bound).
   double thickness_scale = 1.0;
 
   // Sweeps over all edges (or vertices), in index order; each returns how many operations it did.

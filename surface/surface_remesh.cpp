@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -52,6 +53,8 @@ constexpr double kHopelessAbove = 2.0;
 /// The largest part of a vertex budget the thin parts' size bounds (RemeshOptions::max_edge_mm)
 /// may ask for before they are coarsened: the rest of the surface keeps at least half.
 constexpr double kThinShare = 0.5;
+/// The largest factor on those bounds: beyond it the budget cannot resolve the thin parts at all.
+constexpr double kMaxThicknessScale = 2.5;
 
 }  // namespace
 
@@ -84,9 +87,12 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     // than kThinShare of the budget at this L, every bound is scaled up alike, so that the rest
     // keeps a resolution of its own. Then L is solved again with the bounds in the size field
     // (a few fixed-point steps; the rounds correct it from the measured count).
+    // Past kMaxThicknessScale the bounds no longer fit the parts they are for, they would only
+    // make the sizes uneven: the thin parts are left to the uniform size (reported as scale 0).
     const double thin = m.thin_vertex_demand();
     if (thin > kThinShare * goal) m.thickness_scale = std::sqrt(thin / (kThinShare * goal));
-    if (options.max_edge_mm)
+    if (m.thickness_scale > kMaxThicknessScale) m.thickness_scale = std::numeric_limits<double>::infinity();
+    if (options.max_edge_mm && std::isfinite(m.thickness_scale))
       for (int k = 0; k < 5; ++k) m.L = std::sqrt(2.0 * m.weighted_area() / (std::sqrt(3.0) * goal));
   } else {
     m.L = options.target_edge_mm;
@@ -244,7 +250,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   r.surface = std::move(result);
   r.checks = check_surface(r.surface);
   r.edge_length_mm = chosen->L;
-  r.thickness_scale = chosen->thickness_scale;
+  r.thickness_scale = std::isfinite(chosen->thickness_scale) ? chosen->thickness_scale : 0.0;
   r.splits = chosen->splits;
   r.collapses = chosen->collapses;
   r.flips = chosen->flips;

@@ -13,7 +13,8 @@
 // 30 degrees) nor adds angles under 30 degrees). Near junction edges that stay far shorter than h,
 // h is capped (surface/graded_size_cap.h). An absolute bound from the local thickness
 // (RemeshOptions::max_edge_mm) keeps thin sheets and tubes at edges that fit them; when those would
-// take more than half the budget, all of them are scaled up by one factor (reported). Progress:
+// take more than half the budget, all of them are scaled up by one factor (reported), or dropped
+// when that factor would exceed 2.5 (they no longer fit the parts they are for). Progress:
 // a note per round (vertices, L in mm), after the polish, after a repair and after the quality
 // smoothing.
 // Validity: no operation makes two triangles intersect (an exact guard), so a valid input gives an
@@ -64,7 +65,8 @@ struct RemeshResult {
   TriSurface surface;
   SurfaceCheckReport checks;    ///< surface/surface_checks.h of `surface`
   double edge_length_mm = 0.0;  ///< L, the size where s = 1, after the budget rescaling
-  /// Factor (>= 1) the thin parts' size bounds were scaled by to fit the budget (1: as asked).
+  /// Factor (>= 1) the thin parts' size bounds were scaled by to fit the budget (1: as asked; 0:
+  /// dropped, the budget cannot resolve them: more than 2.5 would have been needed).
   double thickness_scale = 1.0;
   std::size_t splits = 0, collapses = 0, flips = 0;
   std::size_t angle_moves = 0;  ///< vertex moves of the angle-improving smoothing (a kept repair's included)

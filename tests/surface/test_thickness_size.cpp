@@ -91,3 +91,22 @@ TEST(ThicknessSize, ThinPartsGetEdgesThatFitThemWithinTheBudget) {
   EXPECT_LT(sheet_b, 0.8 * rest_b);
   EXPECT_LT(sheet_b, 1.25 * 1.5 * bounded.thickness_scale);
 }
+
+// At 100 vertices the sheet would need a factor of about 2.7 on its bound to take half the budget:
+// the bound no longer fits the sheet, so it is dropped (scale 0) and the result is the uniform one.
+TEST(ThicknessSize, ABoundTheBudgetCannotAffordIsDropped) {
+  const LabelImage img = sheet_image();
+  const TriSurface input = extract(img, 3).surface;
+  const SurfaceProjection on(input);
+  const ThicknessSize bound(img, 4.0, 1.0, 0.5);
+  RemeshOptions options;
+  options.target_vertices = 100;
+  options.max_deviation_mm = 0.5 * img.spacing.norm();
+  Progress progress;
+  const RemeshResult uniform = remesh_surface(input, on, options, progress);
+  options.max_edge_mm = [&bound](const Eigen::Vector3d& p) { return bound(p); };
+  const RemeshResult bounded = remesh_surface(input, on, options, progress);
+  EXPECT_EQ(bounded.thickness_scale, 0.0) << "the bound was kept";
+  EXPECT_EQ(bounded.surface.points, uniform.surface.points);
+  EXPECT_EQ(bounded.surface.triangles, uniform.surface.triangles);
+}
