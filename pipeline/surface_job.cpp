@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <optional>
 
 
@@ -78,6 +79,11 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
     auto stage = progress.stage("projection onto the extracted surface");
     return SurfaceProjection(r.extraction.surface);
   }();
+  // The Hausdorff distance at the end queries the extracted surface's whole-surface tree: it is
+  // built on a thread of its own while the remeshing runs (mostly on one thread), and waited for
+  // before that measure (or, on an exception, by the future's destructor, before on_extracted's).
+  std::future<void> extracted_tree =
+      std::async(std::launch::async, [&on_extracted] { on_extracted.prepare_distance(); });
   RemeshOptions options;
   options.target_vertices = config.surface.target_vertices;
   options.target_edge_mm = config.surface.target_edge_mm;
@@ -127,6 +133,7 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
   }
   {
     auto stage = progress.stage("Hausdorff distance to the extracted surface");
+    extracted_tree.get();
     const SurfaceProjection on_remeshed(r.remesh->surface);
     r.hausdorff = hausdorff_distance(r.remesh->surface, on_remeshed, r.extraction.surface, on_extracted);
   }
