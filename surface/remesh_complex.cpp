@@ -32,6 +32,9 @@ constexpr double kDeviationPerEdge = 0.25;
 /// by a few between neighbouring factors): a tuned value, not a threshold.
 constexpr double kCapFactor = 1.5;
 constexpr double kCapGradation = 0.4;
+/// The cap's floor as a fraction of options.max_deviation_mm (RemeshComplex::s): below a quarter
+/// voxel diagonal no edge means anything. The phantom's shipped budgets do not reach it.
+constexpr double kCapFloorOfDeviation = 0.5;
 /// edges() lists the two halves of the triangle list on two threads from this many triangles on
 /// (a smaller list takes less time than starting the threads).
 constexpr std::size_t kParallelEdgesFrom = 20000;
@@ -148,7 +151,11 @@ RemeshComplex::VertexFloor RemeshComplex::vertex_floor() const {
 double RemeshComplex::s(const Vector3d& p) const {
   double s0 = size_ ? size_(p) : 1.0;
   if (max_edge_) s0 = std::min(s0, thickness_scale * max_edge_(p) / L);
-  return cap_.size() == 0 ? s0 : std::min(s0, cap_(p) / L);
+  // The cap never goes below kCapFloorOfDeviation of the deviation bound (a quarter of a voxel
+  // diagonal in the pipeline): around two junction corners a fraction of a voxel apart, each
+  // round's splits left shorter stuck edges whose caps asked for shorter edges again, down to
+  // 0.0001 mm and a knot of hundreds of triangles that TetGen filled with flat tets.
+  return cap_.size() == 0 ? s0 : std::min(s0, std::max(cap_(p), kCapFloorOfDeviation * max_deviation_) / L);
 }
 
 double RemeshComplex::thin_vertex_demand() const {
