@@ -43,6 +43,26 @@ double mean_edge(const TriSurface& s, bool sheet) {
   return sum / static_cast<double>(n);
 }
 
+/// The sheet image remeshed to `budget` vertices without and with the thickness bound (ratio 1).
+struct UniformAndBounded {
+  RemeshResult uniform, bounded;
+};
+UniformAndBounded remesh_sheet(int budget) {
+  const LabelImage img = sheet_image();
+  const TriSurface input = extract(img, 3).surface;
+  const SurfaceProjection on(input);
+  const ThicknessSize bound(img, 4.0, 1.0, 0.5);
+  RemeshOptions options;
+  options.target_vertices = budget;
+  options.max_deviation_mm = 0.5 * img.spacing.norm();
+  Progress progress;
+  UniformAndBounded r;
+  r.uniform = remesh_surface(input, on, options, progress);
+  options.max_edge_mm = [&bound](const Eigen::Vector3d& p) { return bound(p); };
+  r.bounded = remesh_surface(input, on, options, progress);
+  return r;
+}
+
 }  // namespace
 
 TEST(ThicknessSize, BoundsTheSizeByTheThicknessNearThinParts) {
@@ -66,18 +86,7 @@ TEST(ThicknessSize, BoundsTheSizeByTheThicknessNearThinParts) {
 // the surface stays valid; the sheet would take more than half the budget at 1.5 mm, so the bound
 // is scaled by a factor a little over 1 (about 1.1 by the area estimate).
 TEST(ThicknessSize, ThinPartsGetEdgesThatFitThemWithinTheBudget) {
-  const LabelImage img = sheet_image();
-  const TriSurface input = extract(img, 3).surface;
-  const SurfaceProjection on(input);
-  const ThicknessSize bound(img, 4.0, 1.0, 0.5);
-  RemeshOptions options;
-  options.target_vertices = 600;
-  options.max_deviation_mm = 0.5 * img.spacing.norm();
-  Progress progress;
-  const RemeshResult uniform = remesh_surface(input, on, options, progress);
-  options.max_edge_mm = [&bound](const Eigen::Vector3d& p) { return bound(p); };
-  const RemeshResult bounded = remesh_surface(input, on, options, progress);
-
+  const auto [uniform, bounded] = remesh_sheet(600);
   const double sheet_u = mean_edge(uniform.surface, true), rest_u = mean_edge(uniform.surface, false);
   const double sheet_b = mean_edge(bounded.surface, true), rest_b = mean_edge(bounded.surface, false);
   std::cout << "[ surface  ] mean edge sheet / rest: uniform " << sheet_u << " / " << rest_u << " mm, bounded "
@@ -95,17 +104,7 @@ TEST(ThicknessSize, ThinPartsGetEdgesThatFitThemWithinTheBudget) {
 // At 100 vertices the sheet would need a factor of about 2.7 on its bound to take half the budget:
 // the bound no longer fits the sheet, so it is dropped (scale 0) and the result is the uniform one.
 TEST(ThicknessSize, ABoundTheBudgetCannotAffordIsDropped) {
-  const LabelImage img = sheet_image();
-  const TriSurface input = extract(img, 3).surface;
-  const SurfaceProjection on(input);
-  const ThicknessSize bound(img, 4.0, 1.0, 0.5);
-  RemeshOptions options;
-  options.target_vertices = 100;
-  options.max_deviation_mm = 0.5 * img.spacing.norm();
-  Progress progress;
-  const RemeshResult uniform = remesh_surface(input, on, options, progress);
-  options.max_edge_mm = [&bound](const Eigen::Vector3d& p) { return bound(p); };
-  const RemeshResult bounded = remesh_surface(input, on, options, progress);
+  const auto [uniform, bounded] = remesh_sheet(100);
   EXPECT_EQ(bounded.thickness_scale, 0.0) << "the bound was kept";
   EXPECT_EQ(bounded.surface.points, uniform.surface.points);
   EXPECT_EQ(bounded.surface.triangles, uniform.surface.triangles);
