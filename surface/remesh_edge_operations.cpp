@@ -93,6 +93,11 @@ bool RemeshComplex::collapse_allowed(int a, int b, const std::vector<int>& ts, c
   if (kind_[a] == Kind::Curve) {
     if (curve != owner_[a]) return false;
     if (curve_edges_[curve] <= (curve_closed_[curve] ? kMinLoopEdges : 1)) return false;
+    // A junction edge (a, w) would become (b, w): refused when that is a junction edge already
+    // (two curves between the same two corners, a triangle between them): the two would merge
+    // into one edge and one of the curves would lose it.
+    for (int w : na)
+      if (w != b && curve_of_edge(a, w) >= 0 && curve_of_edge(b, w) >= 0) return false;
   }
   // Link condition: the common neighbours are exactly the opposite vertices of the edge's triangles.
   thread_local std::vector<int> nb, common;  // per thread (partitioned sweeps), kept allocated
