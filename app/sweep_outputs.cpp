@@ -52,12 +52,6 @@ std::string csv_text(const std::string& s) {
   return out + "\"";
 }
 
-const TissueMotion* tumour_of(const std::vector<TissueMotion>& tissues) {
-  for (const TissueMotion& t : tissues)
-    if (t.name == "tumor" || t.name == "tumour") return &t;
-  return nullptr;
-}
-
 /// The scalar outputs a summary ranks, from one sample's record.
 std::vector<std::pair<std::string, double>> scalar_outputs(const nlohmann::json& s) {
   std::vector<std::pair<std::string, double>> out;

@@ -82,6 +82,8 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
                                                std::to_string(floor.closed_curves) + " closed junction curves, 4 on each of " +
                                                std::to_string(floor.closed_pieces) + " closed islands)");
     const double goal = static_cast<double>(target);
+    // L without the thin parts' bounds first (an infinite factor switches them off).
+    m.thickness_scale = std::numeric_limits<double>::infinity();
     m.L = std::sqrt(2.0 * m.weighted_area() / (std::sqrt(3.0) * goal));
     // Thin parts bound the size absolutely (options.max_edge_mm): where they would take more
     // than kThinShare of the budget at this L, every bound is scaled up alike, so that the rest
@@ -89,11 +91,15 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
     // (a few fixed-point steps; the rounds correct it from the measured count).
     // Past kMaxThicknessScale the bounds no longer fit the parts they are for, they would only
     // make the sizes uneven: the thin parts are left to the uniform size (reported as scale 0).
-    const double thin = m.thin_vertex_demand();
-    if (thin > kThinShare * goal) m.thickness_scale = std::sqrt(thin / (kThinShare * goal));
-    if (m.thickness_scale > kMaxThicknessScale) m.thickness_scale = std::numeric_limits<double>::infinity();
-    if (options.max_edge_mm && std::isfinite(m.thickness_scale))
-      for (int k = 0; k < 5; ++k) m.L = std::sqrt(2.0 * m.weighted_area() / (std::sqrt(3.0) * goal));
+    if (options.max_edge_mm) {
+      m.thickness_scale = 1.0;
+      const double thin = m.thin_vertex_demand();
+      if (thin > kThinShare * goal) m.thickness_scale = std::sqrt(thin / (kThinShare * goal));
+      if (m.thickness_scale > kMaxThicknessScale)
+        m.thickness_scale = std::numeric_limits<double>::infinity();
+      else
+        for (int k = 0; k < 5; ++k) m.L = std::sqrt(2.0 * m.weighted_area() / (std::sqrt(3.0) * goal));
+    }
   } else {
     m.L = options.target_edge_mm;
   }
@@ -250,7 +256,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   r.surface = std::move(result);
   r.checks = check_surface(r.surface);
   r.edge_length_mm = chosen->L;
-  r.thickness_scale = std::isfinite(chosen->thickness_scale) ? chosen->thickness_scale : 0.0;
+  r.thickness_scale = !options.max_edge_mm ? 1.0 : std::isfinite(chosen->thickness_scale) ? chosen->thickness_scale : 0.0;
   r.splits = chosen->splits;
   r.collapses = chosen->collapses;
   r.flips = chosen->flips;

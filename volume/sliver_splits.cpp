@@ -23,7 +23,7 @@ double min_angle(const std::vector<Eigen::Vector3d>& p, const std::array<int, 4>
 
 class Splitter {
  public:
-  explicit Splitter(TetMesh& mesh) : mesh_(mesh), star_(mesh.points.size()) {
+  Splitter(TetMesh& mesh, double target_deg) : mesh_(mesh), target_deg_(target_deg), star_(mesh.points.size()) {
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
       for (int v : mesh.tets[t]) star_[v].push_back(t);
   }
@@ -59,6 +59,7 @@ class Splitter {
 
  private:
   TetMesh& mesh_;
+  double target_deg_;
   std::vector<std::vector<std::size_t>> star_;  ///< per node: its tets
 
   double signed_volume(std::size_t t) const {
@@ -161,7 +162,13 @@ class Splitter {
         }
       }
     }
-    if (!(best > before)) {
+    // Kept when the smallest angle around the edge rises and no more of its tets are under the
+    // target than before: a split that lifts the worst tet a little but leaves several new ones
+    // under the target only spreads the sliver (repeated, a cluster of them).
+    int below_before = 0, below_after = 0;
+    for (std::size_t t : around) below_before += min_angle(mesh_.points, mesh_.tets[t]) < target_deg_;
+    for (const auto& k : split) below_after += min_angle(mesh_.points, k) < target_deg_;
+    if (!(best > before) || below_after > below_before) {
       mesh_.points.pop_back();
       return false;
     }
@@ -189,7 +196,7 @@ class Splitter {
 
 SliverSplitResult split_slivers(TetMesh& mesh, double target_deg, bool allow_interface_relabels, int max_passes) {
   SliverSplitResult r;
-  Splitter splitter(mesh);
+  Splitter splitter(mesh, target_deg);
   for (int pass = 0; pass < max_passes; ++pass) {
     std::vector<std::pair<double, std::size_t>> bad;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {

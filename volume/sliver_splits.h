@@ -8,7 +8,7 @@
 // split at its midpoint m (each tet around it becomes two, a -> m and b -> m, both positively
 // oriented), m moves by a compass search to maximise the smallest dihedral angle of its star, and
 // the split is kept only when that star's smallest angle exceeds the smallest angle of the tets it
-// replaced. m stays inside the tissue (its star stays positively oriented), so tissue volumes,
+// replaced and no more of its tets are under `target_deg` than of those. m stays inside the tissue (its star stays positively oriented), so tissue volumes,
 // interfaces, the boundary and conformity are unchanged. Deterministic.
 // Optionally (interface relabels), when no such edge helps and the bad tet is a flat wedge whose
 // every neighbour around one of its edges is of one other tissue (a sliver on an interface, e.g.
