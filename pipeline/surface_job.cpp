@@ -4,6 +4,7 @@
 
 #include "core/number_format.h"
 #include "surface/thickness_size.h"
+#include "surface/triangle_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -111,8 +112,7 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
     // with that cap). The smallest bound is a voxel.
     double area = 0.0;
     const TriSurface& e = r.extraction.surface;
-    for (const auto& t : e.triangles)
-      area += 0.5 * (e.points[t[1]] - e.points[t[0]]).cross(e.points[t[2]] - e.points[t[0]]).norm();
+    for (const auto& t : e.triangles) area += area_vector(e.points[t[0]], e.points[t[1]], e.points[t[2]]).norm();
     const double uniform = options.target_vertices > 0
                                ? std::sqrt(2.0 * area / (std::sqrt(3.0) * options.target_vertices))
                                : options.target_edge_mm;

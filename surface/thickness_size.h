@@ -6,14 +6,14 @@
 // At a point p (LPS mm) the bound is max(ratio * t, floor_mm), t the smallest local thickness of
 // the 8 voxels around p (the voxels of both tissues an interface point lies between), +infinity
 // where no thin voxel is near (thickness at least `cap_mm`; outside, id 0, is never thin: it is
-// not meshed). Units mm. Queries are O(1) and may
-// run on several threads at once.
+// not meshed). Units mm. Queries are O(1) and may run on several threads at once.
 #pragma once
 
 #include "core/label_image.h"
 
 #include <Eigen/Core>
 
+#include <array>
 #include <vector>
 
 namespace tissuemesh {

@@ -117,7 +117,12 @@ class Splitter {
     const std::vector<std::size_t> around = ring(a, b);
     if (!interior(a, b, around)) return false;
     double before = std::numeric_limits<double>::infinity();
-    for (std::size_t t : around) before = std::min(before, min_angle(mesh_.points, mesh_.tets[t]));
+    int below_before = 0;  // tets around the edge under the target
+    for (std::size_t t : around) {
+      const double q = min_angle(mesh_.points, mesh_.tets[t]);
+      before = std::min(before, q);
+      below_before += q < target_deg_;
+    }
     // The split tets, with the new node as index `m` (appended to the points).
     const int m = static_cast<int>(mesh_.points.size());
     std::vector<std::array<int, 4>> split;
@@ -165,8 +170,7 @@ class Splitter {
     // Kept when the smallest angle around the edge rises and no more of its tets are under the
     // target than before: a split that lifts the worst tet a little but leaves several new ones
     // under the target only spreads the sliver (repeated, a cluster of them).
-    int below_before = 0, below_after = 0;
-    for (std::size_t t : around) below_before += min_angle(mesh_.points, mesh_.tets[t]) < target_deg_;
+    int below_after = 0;
     for (const auto& k : split) below_after += min_angle(mesh_.points, k) < target_deg_;
     if (!(best > before) || below_after > below_before) {
       mesh_.points.pop_back();
