@@ -89,6 +89,9 @@ void add_sliver_repair_json(nlohmann::json& j, const SliverRepair& repair, const
   j["sliver_smoothing"] = {{"vertex_moves", repair.sliver_smoothing.moved_vertices},
                            {"vertex_moves_on_curved_surface", repair.sliver_smoothing.moved_on_surface},
                            {"passes", repair.sliver_smoothing.passes}};
+  j["sliver_offsets"] = {{"vertex_moves", repair.sliver_offsets.moved_off_surface},
+                         {"max_offset_mm", repair.sliver_offsets.max_offset_mm},
+                         {"passes", repair.sliver_offsets.passes}};
   j["sliver_splits"] = {{"edges_split", repair.sliver_splits.splits},
                         {"interface_wedges_relabelled", repair.sliver_splits.relabelled_wedges},
                         {"volume_relabelled_mm3", repair.sliver_splits.volume_relabelled_mm3}};
@@ -123,6 +126,11 @@ std::string sliver_repair_text(const SliverRepair& repair) {
         << fmt("%.4f mm^3 moved", sp.volume_relabelled_mm3) << ")";
     s << "\n";
   }
+  const SliverSmoothingResult& o = repair.sliver_offsets;
+  if (o.moved_off_surface > 0)
+    s << "sliver moves off the surface: " << o.moved_off_surface
+      << " moves of boundary or interface vertices of tets still under 10 degrees (sliver_offset_edge_ratio), the surface moved there by at most "
+      << fmt("%.3f mm\n", o.max_offset_mm);
   const BoundaryPinchRepair& p = repair.boundary_pinches;
   if (p.edges_found > 0)
     s << "boundary pinches opened: " << p.edges_found << " edges where the outer boundary touched itself, "

@@ -16,6 +16,7 @@ void Mesh3Optimisation::read(YamlMap& m) {
   split_relabels = interface_flips;
   smooth_slivers_below_deg = m.in_range("smooth_slivers_below_deg", smooth_slivers_below_deg, 0.0, 60.0);
   smooth_near_planar_deg = m.in_range("smooth_near_planar_deg", smooth_near_planar_deg, 0.0, 30.0);
+  sliver_offset_edge_ratio = m.in_range("sliver_offset_edge_ratio", sliver_offset_edge_ratio, 0.0, 0.5);
   open_boundary_pinches = m.boolean("open_boundary_pinches", open_boundary_pinches);
 }
 
@@ -32,6 +33,7 @@ void Mesh3Optimisation::emit(YAML::Emitter& out) const {
   out << YAML::Key << "interface_flips" << YAML::Value << interface_flips;
   out << YAML::Key << "smooth_slivers_below_deg" << YAML::Value << smooth_slivers_below_deg;
   out << YAML::Key << "smooth_near_planar_deg" << YAML::Value << smooth_near_planar_deg;
+  out << YAML::Key << "sliver_offset_edge_ratio" << YAML::Value << sliver_offset_edge_ratio;
   out << YAML::Key << "open_boundary_pinches" << YAML::Value << open_boundary_pinches;
 }
 

@@ -51,6 +51,11 @@ struct Mesh3Optimisation {
   /// surface moves off its place by at most sin(2 x this angle) times the move (sliver_smoothing.h).
   /// 0 = off (exactly flat patches only).
   double smooth_near_planar_deg = 0.0;
+  /// Last resort for what is still under 10 degrees after the splits: the smoothing again, its
+  /// vertices on boundaries and interfaces (junctions included) now free to move off them by at
+  /// most this times their mean edge length, then the splits again (sliver_smoothing.h). The
+  /// boundary and interfaces move by at most that at those vertices. 0 = off.
+  double sliver_offset_edge_ratio = 0.1;
   /// Where the outer boundary touches itself along an edge (non-manifold), remove the tets of the
   /// smaller side around that edge (boundary_pinches.h). Off leaves such a mesh to fail the
   /// conformity check.
@@ -69,12 +74,14 @@ struct SliverRepair {
   SliverFlipResult sliver_flips;           ///< flips applied inside tissues
   SliverSmoothingResult sliver_smoothing;  ///< vertices moved (free, in-plane, on the surface)
   SliverSplitResult sliver_splits;         ///< interior edges split where moves could not help
+  SliverSmoothingResult sliver_offsets;    ///< the last resort's moves off the surface (sliver_offset_edge_ratio)
   BoundaryPinchRepair boundary_pinches;    ///< tets removed where the outer boundary pinches at an edge
 };
 
 /// The repairs `options` asks for (remove_boundary_slivers_deg, flip_slivers_below_deg,
 /// smooth_slivers_below_deg and then, for what is still below 10 degrees, splits of edges inside one
-/// tissue (sliver_splits.h), open_boundary_pinches; in that order), on a mesh just extracted from
+/// tissue (sliver_splits.h), the moves off the surface of sliver_offset_edge_ratio and splits again,
+/// open_boundary_pinches; in that order), on a mesh just extracted from
 /// CGAL; a mesh too large for them is left as it is, with a warning.
 /// `onto_surface` (optional): the surface the mesh's boundary and interfaces approximate, for the
 /// smoothing of vertices on curved ones (sliver_smoothing.h).

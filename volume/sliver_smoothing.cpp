@@ -44,7 +44,8 @@ constexpr double kOnSurfaceMaxRad = 45.0 * M_PI / 180.0;
 
 // How a vertex may move without changing any tissue's boundary (near-planar: its volume).
 struct Mobility {
-  enum Kind : char { kFixed, kFree, kInPlane, kOnSurface } kind = kFixed;
+  /// kOffSurface: anywhere within the offset bound of where it was (smooth_slivers' offset_edge_ratio).
+  enum Kind : char { kFixed, kFree, kInPlane, kOnSurface, kOffSurface } kind = kFixed;
   /// The region pair of its faces (pair.second: the tissue whose volume near-planar moves keep).
   std::pair<int, int> pair{-1, -1};
   /// Unit normal of its first face, oriented from pair.first into pair.second (kInPlane: of the
@@ -150,7 +151,7 @@ Eigen::Vector3d volume_plane(const TetMesh& mesh, const std::vector<std::size_t>
 
 class Smoother {
  public:
-  Smoother(TetMesh& mesh, double target_deg, const SurfaceProjector& onto_surface)
+  Smoother(TetMesh& mesh, double target_deg, const SurfaceProjector& onto_surface, double offset_edge_ratio)
       : mesh_(mesh), target_deg_(target_deg), onto_surface_(onto_surface), star_start_(mesh.points.size() + 1, 0) {
     for (const auto& k : mesh.tets)
       for (int v : k) ++star_start_[static_cast<std::size_t>(v) + 1];
@@ -159,6 +160,26 @@ class Smoother {
     std::vector<std::size_t> fill(star_start_.begin(), star_start_.end() - 1);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
       for (int v : mesh.tets[t]) star_[fill[static_cast<std::size_t>(v)]++] = t;
+    if (offset_edge_ratio > 0.0) {
+      origin_ = mesh.points;
+      max_offset_.resize(mesh.points.size());
+      for (std::size_t v = 0; v < mesh.points.size(); ++v)
+        max_offset_[v] = offset_edge_ratio * mean_edge(static_cast<int>(v));
+    }
+  }
+
+  /// Mean distance from v to the other nodes of its star's tets (each counted once per tet), mm.
+  double mean_edge(int v) const {
+    const Eigen::Vector3d& x = mesh_.points[static_cast<std::size_t>(v)];
+    double sum = 0;
+    std::size_t edges = 0;
+    for (std::size_t i = star_start_[v]; i < star_start_[v + 1]; ++i)
+      for (int w : mesh_.tets[star_[i]])
+        if (w != v) {
+          sum += (mesh_.points[static_cast<std::size_t>(w)] - x).norm();
+          ++edges;
+        }
+    return sum / static_cast<double>(std::max<std::size_t>(edges, 1));
   }
 
   /// v's star at v's current position: its smallest dihedral angle (-inf when a tet is not
@@ -208,19 +229,19 @@ class Smoother {
     Eigen::Vector3d& p = mesh_.points[static_cast<std::size_t>(v)];
     const Eigen::Vector3d start = p;
     const StarQuality q0 = star_quality(v);
+    // Off the surface the move is as short as it can be: steps of a quarter of the bound, and no
+    // gain counted past the target angle, so the vertex stops once its star is over it.
+    const bool off_surface = mobility.kind == Mobility::kOffSurface;
     // A star that already holds a flat or inverted tet is left alone: no move is measured against
     // it, and its worst tet is unknown.
     if (!std::isfinite(q0.min_deg)) return false;
     StarQuality best = q0;
-    double edge_sum = 0;
-    std::size_t edges = 0;
-    for (std::size_t i = star_start_[v]; i < star_start_[v + 1]; ++i)
-      for (int w : mesh_.tets[star_[i]])
-        if (w != v) {
-          edge_sum += (mesh_.points[static_cast<std::size_t>(w)] - start).norm();
-          ++edges;
-        }
-    double step = 0.25 * edge_sum / static_cast<double>(std::max<std::size_t>(edges, 1));
+    auto better = [&](const StarQuality& a, const StarQuality& b) {
+      if (!off_surface) return a.better_than(b);
+      const double ma = std::min(a.min_deg, target_deg_), mb = std::min(b.min_deg, target_deg_);
+      return ma > mb || (ma == mb && a.shortfall < b.shortfall);
+    };
+    double step = off_surface ? 0.25 * max_offset_[static_cast<std::size_t>(v)] : 0.25 * mean_edge(v);
     constexpr int kHalvings = 8, kMovesPerStep = 16;
     for (int level = 0; level < kHalvings; ++level, step *= 0.5) {
       for (int move = 0; move < kMovesPerStep; ++move) {
@@ -242,7 +263,7 @@ class Smoother {
           directions[6] = normal;
           directions[7] = -normal;
         }
-        if (mobility.kind != Mobility::kFree)
+        if (mobility.kind != Mobility::kFree && mobility.kind != Mobility::kOffSurface)
           for (Eigen::Vector3d& d : directions) {
             d -= d.dot(mobility.normal) * mobility.normal;
             if (d.norm() < 1e-3) d.setZero();  // (nearly) along the normal: no move in the plane
@@ -256,8 +277,11 @@ class Smoother {
           if (mobility.kind == Mobility::kOnSurface &&
               (!onto_surface_(mobility.pair.first, mobility.pair.second, p) || (p - here).norm() > 2.0 * step))
             continue;
+          if (mobility.kind == Mobility::kOffSurface &&
+              (p - origin_[static_cast<std::size_t>(v)]).norm() > max_offset_[static_cast<std::size_t>(v)])
+            continue;
           const StarQuality q = star_quality(v);
-          if (q.better_than(best)) {
+          if (better(q, best)) {
             best = q;
             best_point = p;
           }
@@ -266,15 +290,23 @@ class Smoother {
         if (best_point == here) break;
       }
     }
-    if (best.better_than(q0)) return true;
+    if (better(best, q0)) return true;
     p = start;
     return false;
+  }
+
+  /// How far v is from where it was when the smoother was made (0 without an offset bound).
+  double offset(int v) const {
+    return origin_.empty() ? 0.0 : (mesh_.points[static_cast<std::size_t>(v)] - origin_[static_cast<std::size_t>(v)]).norm();
   }
 
  private:
   TetMesh& mesh_;
   double target_deg_;
   const SurfaceProjector& onto_surface_;
+  // With an offset bound only: the positions at the start and how far each node may leave them.
+  std::vector<Eigen::Vector3d> origin_;
+  std::vector<double> max_offset_;
   std::vector<std::size_t> star_start_;
   std::vector<std::size_t> star_;
 };
@@ -282,11 +314,14 @@ class Smoother {
 }  // namespace
 
 SliverSmoothingResult smooth_slivers(TetMesh& mesh, double target_deg, double near_planar_deg,
-                                     const SurfaceProjector& onto_surface, int max_passes) {
+                                     const SurfaceProjector& onto_surface, int max_passes, double offset_edge_ratio) {
   SliverSmoothingResult r;
-  const std::vector<Mobility> mobile = mobility(mesh, near_planar_deg * M_PI / 180.0, bool(onto_surface));
+  std::vector<Mobility> mobile = mobility(mesh, near_planar_deg * M_PI / 180.0, bool(onto_surface));
+  if (offset_edge_ratio > 0.0)
+    for (Mobility& m : mobile)
+      if (m.kind != Mobility::kFree) m.kind = Mobility::kOffSurface;
   auto movable = [&](int v) { return mobile[static_cast<std::size_t>(v)].kind != Mobility::kFixed; };
-  Smoother smoother(mesh, target_deg, onto_surface);
+  Smoother smoother(mesh, target_deg, onto_surface, offset_edge_ratio);
   for (int pass = 0; pass < max_passes; ++pass) {
     // Every tet's smallest angle on two threads (each tet on its own), gathered in tet order.
     const auto n = static_cast<std::ptrdiff_t>(mesh.tets.size());
@@ -311,6 +346,10 @@ SliverSmoothingResult smooth_slivers(TetMesh& mesh, double target_deg, double ne
         if (movable(v) && smoother.improve(v, m)) {
           ++moved;
           if (m.kind == Mobility::kOnSurface) ++r.moved_on_surface;
+          if (m.kind == Mobility::kOffSurface) {
+            ++r.moved_off_surface;
+            r.max_offset_mm = std::max(r.max_offset_mm, smoother.offset(v));
+          }
         }
       }
     }

@@ -13,7 +13,10 @@
 // inside a tissue or within an exactly flat patch, splits of edges inside one tissue; never the
 // boundary sliver removal, interface flips or moves over curved patches. open_boundary_pinches as
 // configured (it acts only where the surface's outer boundary touches itself along an edge).
-// Slivers whose four vertices are on the surface stay.
+// Slivers whose four vertices are on the surface and that are still under 10 degrees after all of
+// these get the last resort of sliver_offset_edge_ratio: those vertices move off the surface by at
+// most that fraction of their mean edge (the tet mesh's boundary and interfaces then differ from
+// `surface` there).
 //
 // Tet budget (`volume.target_tets` > 0): first the mesh without a size bound, the fewest tets
 // TetGen gives; within 10 % of the budget it is kept, further above it the budget is an InputError

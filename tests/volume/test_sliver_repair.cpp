@@ -5,6 +5,7 @@
 #include "quality/conformity.h"
 #include "volume/direct_mesher.h"
 #include "quality/mesh_quality.h"
+#include "volume/mesh3_optimisation.h"
 #include "volume/sliver_flips.h"
 #include "volume/sliver_smoothing.h"
 #include "support/model_fixture.h"
@@ -420,4 +421,87 @@ TEST(SliverSmoothing, KeepsTheNodeOnTheRimOfAThinFinFixed) {
   EXPECT_EQ(projections, 0);
   EXPECT_EQ(r.moved_on_surface, 0u);
   EXPECT_EQ(mesh.points[3], Eigen::Vector3d(0, 1, 0));
+}
+
+namespace {
+
+// A 4 x 4 mm slab of three layers on a 1 mm grid: 1 mm of tissue 2, a sheet of tissue 1 only
+// `sheet_mm` thick, 1 mm of tissue 2. Every node of the sheet is on an interface and the sheet's
+// tets are flat: no move within the interfaces' planes and no split inside one tissue repairs
+// them.
+TetMesh pinched_sheet(double sheet_mm) {
+  TetMesh mesh = test::box_mesh({0, 0, 0}, {4, 4, 3}, 4, 4, 3);
+  const double z[4] = {0.0, 1.0, 1.0 + sheet_mm, 2.0 + sheet_mm};
+  for (auto& x : mesh.points) x.z() = z[static_cast<int>(std::lround(x.z()))];
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    double zc = 0;
+    for (int v : mesh.tets[t]) zc += 0.25 * mesh.points[static_cast<std::size_t>(v)].z();
+    mesh.tissue_ids[t] = zc > 1.0 && zc < 1.0 + sheet_mm ? 1 : 2;
+  }
+  mesh.tissue_names = {"sheet", "around"};
+  return mesh;
+}
+
+}  // namespace
+
+// The last resort moves the sheet's nodes off its interfaces, never further than the bound (a
+// fraction of the node's mean edge), and lifts the sheet's tets over 10 degrees; without the
+// bound nothing can move them off.
+TEST(SliverSmoothing, MovesNodesOfAPinchedSheetOffItsInterfacesWithinTheBound) {
+  TetMesh mesh = pinched_sheet(0.08);
+  ASSERT_EQ(check_conformity(mesh).inverted_tets, 0u);
+  const QualityReport before = compute_quality(mesh);
+  ASSERT_LT(before.tissues[0].min_dihedral_deg, 10.0);
+  const TetMesh original = mesh;
+
+  TetMesh within = mesh;
+  const SliverSmoothingResult kept = smooth_slivers(within, 10.0);
+  EXPECT_EQ(kept.moved_off_surface, 0u);
+  EXPECT_NEAR(compute_quality(within).tissues[0].volume_mm3, before.tissues[0].volume_mm3,
+              test::kRelativeRoundoff * before.tissues[0].volume_mm3);
+  EXPECT_LT(compute_quality(within).tissues[0].min_dihedral_deg, 10.0);
+
+  const double ratio = 0.3;
+  // Each node's bound is at most ratio times its longest edge.
+  std::vector<double> longest(mesh.points.size(), 0.0);
+  for (const auto& k : mesh.tets)
+    for (int a : k)
+      for (int b : k)
+        longest[static_cast<std::size_t>(a)] = std::max(
+            longest[static_cast<std::size_t>(a)],
+            (mesh.points[static_cast<std::size_t>(a)] - mesh.points[static_cast<std::size_t>(b)]).norm());
+  const SliverSmoothingResult r = smooth_slivers(mesh, 10.0, 0.0, {}, 4, ratio);
+  EXPECT_GT(r.moved_off_surface, 0u);
+  EXPECT_GT(r.max_offset_mm, 0.0);
+  EXPECT_EQ(mesh.tets, original.tets);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    EXPECT_LE((mesh.points[i] - original.points[i]).norm(), ratio * longest[i]) << "node " << i;
+  EXPECT_EQ(check_conformity(mesh).inverted_tets, 0u);
+  const QualityReport after = compute_quality(mesh);
+  // The slab as a whole keeps its volume to within the largest offset times its outer area.
+  EXPECT_NEAR(after.total.volume_mm3, before.total.volume_mm3, r.max_offset_mm * (2 * 16 + 4 * 4 * 2.08));
+  std::cout << "[ smooth   ] pinched sheet: min dihedral " << before.tissues[0].min_dihedral_deg << " -> "
+            << after.tissues[0].min_dihedral_deg << " deg, nodes moved off by at most " << r.max_offset_mm << " mm\n";
+  EXPECT_GE(after.total.min_dihedral_deg, 10.0);
+}
+
+// repair_slivers runs the last resort only while a tet is under 10 degrees, and not at all with
+// sliver_offset_edge_ratio 0.
+TEST(SliverRepair, OffSurfaceMovesOnlyWhereTetsStayUnderTenDegrees) {
+  Mesh3Optimisation options;
+  std::vector<std::string> warnings;
+  TetMesh sheet = pinched_sheet(0.08);
+  const SliverRepair r = repair_slivers(sheet, options, warnings);
+  EXPECT_GT(r.sliver_offsets.moved_off_surface, 0u);
+  EXPECT_GT(compute_quality(sheet).total.min_dihedral_deg, compute_quality(pinched_sheet(0.08)).total.min_dihedral_deg);
+
+  Mesh3Optimisation off = options;
+  off.sliver_offset_edge_ratio = 0.0;
+  TetMesh kept = pinched_sheet(0.08);
+  EXPECT_EQ(repair_slivers(kept, off, warnings).sliver_offsets.moved_off_surface, 0u);
+
+  TetMesh thick = pinched_sheet(1.0);  // a regular grid: nothing under 10 degrees
+  const TetMesh before = thick;
+  EXPECT_EQ(repair_slivers(thick, options, warnings).sliver_offsets.passes, 0u);
+  EXPECT_EQ(thick.points, before.points);
 }
