@@ -45,8 +45,9 @@ SliverRepair repair_slivers(TetMesh& mesh, const Mesh3Optimisation& options, std
   // The last resort moves the boundary and interfaces, so it waits for everything that keeps them,
   // and runs only where a tet is still under the splits' bar.
   if (options.smooth_slivers_below_deg > 0 && options.sliver_offset_edge_ratio > 0 && any_tet_below(mesh, split_below)) {
-    r.sliver_offsets = smooth_slivers(mesh, split_below, options.smooth_near_planar_deg, onto_surface, 4,
-                                      options.sliver_offset_edge_ratio);
+    // Every vertex that is not free moves off its surface here, so neither the near-planar angle
+    // nor a projector would change what moves.
+    r.sliver_offsets = smooth_slivers(mesh, split_below, 0.0, {}, 4, options.sliver_offset_edge_ratio);
     if (r.sliver_offsets.moved_vertices > 0 && any_tet_below(mesh, split_below)) {
       const SliverSplitResult again = split_slivers(mesh, split_below, options.split_relabels);
       r.sliver_splits.splits += again.splits;
