@@ -26,7 +26,7 @@ using Eigen::Vector3d;
 constexpr double kMaxNormalTurnDeg = 60.0;
 constexpr int kTaperRings = 3;
 constexpr double kFlatDeg = 10.0;   // faces within this of the vertex normal: full offset
-constexpr double kBentDeg = 40.0;   // a face this far off: none
+constexpr double kBentDeg = 60.0;   // a face this far off: none
 constexpr double kBentIslandDeg = 80.0;  // the same on a component without junctions (no rim to stretch)
 constexpr int kFreezings = 8;       // a round that breaks the surface is solved again without the spot this often
 constexpr int kHalvings = 3;        // and then retried at half its offsets this often
@@ -72,7 +72,7 @@ std::map<int, double> enclosed_volumes(const TriSurface& s) {
 }
 
 VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& reference, double tolerance_rel,
-                                  int max_rounds) {
+                                  int max_rounds, const RestorationCheck& check) {
   const int n_tissues = static_cast<int>(s.tissue_names.size());
   for (const auto& [id, v] : reference)
     if (id < 1 || id > n_tissues || !(v > 0.0 && std::isfinite(v)))
@@ -229,9 +229,11 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
       return Eigen::VectorXd(CWinv.transpose() * lambda);
     };
     // Moves each movable vertex by scale * d of its patch along its area-weighted normal there;
-    // true if no triangle turns over, the smallest angle stays and the surface stays valid, else
-    // `bad` lists the triangles that broke one of these.
+    // true if no triangle turns over, the smallest angle stays and the surface stays valid (or
+    // `check` accepts it), else `bad` lists the triangles that broke one of these and
+    // `bad_vertices` the vertices `check` faults.
     double largest = 0.0;
+    std::vector<int> bad_vertices;  // at fault by `check`
     auto attempt = [&](const Eigen::VectorXd& d, double scale, std::vector<int>& bad) {
       s.points = before;
       largest = 0.0;
@@ -248,10 +250,16 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
             triangle_min_angle_deg(s, s.triangles[t]) < min_angle_before)
           bad.push_back(static_cast<int>(t));
       }
-      std::vector<int> intersecting;
-      const bool valid = check_surface(s, &intersecting, PairSearch::Grid).valid();
-      bad.insert(bad.end(), intersecting.begin(), intersecting.end());
-      return valid && bad.empty();
+      bad_vertices.clear();
+      bool valid = true;
+      if (check) {
+        valid = check(s, bad_vertices);
+      } else {
+        std::vector<int> intersecting;
+        valid = check_surface(s, &intersecting, PairSearch::Grid).valid();
+        bad.insert(bad.end(), intersecting.begin(), intersecting.end());
+      }
+      return valid && bad.empty() && bad_vertices.empty();
     };
     // Where a round breaks the surface (a thin gap closing, a fold turning over), the vertices of
     // those triangles and their neighbours stop moving and the offsets are solved again, so that
@@ -273,12 +281,12 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
     }
     for (int freezing = 0; !ok; ++freezing) {
       ok = attempt(d, 1.0, bad);
-      if (ok || freezing == kFreezings || bad.empty()) break;
-      for (int t : bad)
-        for (int v : s.triangles[t]) {
-          hold(v);
-          for (int w : neighbours[v]) hold(w);
-        }
+      if (ok || freezing == kFreezings || (bad.empty() && bad_vertices.empty())) break;
+      for (int t : bad) bad_vertices.insert(bad_vertices.end(), s.triangles[t].begin(), s.triangles[t].end());
+      for (int v : bad_vertices) {
+        hold(v);
+        for (int w : neighbours[v]) hold(w);
+      }
       d = solve();
     }
     double scale = 0.5;

@@ -11,10 +11,10 @@
 // moves once, consistently for both its sides. Vertices move along their area-weighted normal in
 // the patch, weighted: 0 on junction curves (they belong to several patches), 1/3 and 2/3 on the
 // next two rings, less where the patch bends at the vertex by more than 10 degrees (none beyond
-// 40: the rim of a thin sheet, where diverging normals would stretch the triangles; beyond 80 on a
+// 60: the rim of a thin sheet, where diverging normals would stretch the triangles; beyond 80 on a
 // component of the surface that touches no junction, a closed island such as a marker clip, which
-// inflates like a ball however few vertices it has), and 0 at the
-// triangles within 2 degrees of the surface's smallest angle. The areas in the solve carry the
+// inflates like a ball however few vertices it has), and 0 at the triangles within 2 degrees of
+// the surface's smallest angle. The areas in the solve carry the
 // same weights; the volumes are then measured and the offsets solved again, a few rounds.
 //
 // Where a round would turn a triangle's normal by more than 60 degrees, take a triangle's angle
@@ -31,6 +31,7 @@
 
 #include "core/tri_surface.h"
 
+#include <functional>
 #include <map>
 #include <vector>
 
@@ -49,11 +50,20 @@ struct VolumeRestoration {
 /// Volume each tissue encloses (tissue id -> mm^3), from the signed volumes of its boundary.
 std::map<int, double> enclosed_volumes(const TriSurface& surface);
 
+/// What makes a round's positions acceptable besides the triangle rules above (no normal turned
+/// past 60 degrees, no angle under the smallest): true when `moved` is acceptable, else false with
+/// the vertices at fault in `bad_vertices` (they and their neighbours are then held). The default
+/// (an empty function) requires a valid, intersection-free surface (surface_checks.h); the tets of
+/// a mesh whose surface this is have their own rule (volume/tet_volume_restoration.h).
+using RestorationCheck = std::function<bool(const TriSurface& moved, std::vector<int>& bad_vertices)>;
+
 /// Moves `surface`'s non-junction vertices as above so that every tissue of `reference_mm3`
 /// (tissue id -> volume, > 0) encloses that volume; rounds stop when every tissue is within
-/// `tolerance_rel` (relative) or after `max_rounds`. `surface` must be valid and intersection free.
-/// Throws InputError for a reference naming an unknown tissue or not > 0.
+/// `tolerance_rel` (relative) or after `max_rounds`. With the default check, `surface` must be
+/// valid and intersection free. Throws InputError for a reference naming an unknown tissue or not
+/// > 0.
 VolumeRestoration restore_volumes(TriSurface& surface, const std::map<int, double>& reference_mm3,
-                                  double tolerance_rel = 1e-4, int max_rounds = 8);
+                                  double tolerance_rel = 1e-4, int max_rounds = 8,
+                                  const RestorationCheck& check = {});
 
 }  // namespace tissuemesh
