@@ -478,6 +478,17 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
       vj["patch_pieces"] = v.meshing.pieces;
       vj["duplicated_piece_vertices"] = v.meshing.duplicated_vertices;
       vj["initial_points"] = v.meshing.initial_points;
+      vj["size_factor"] = v.meshing.size_factor;
+      nlohmann::json rounds = nlohmann::json::array();
+      for (const SizeRound& b : v.meshing.budget) rounds.push_back({{"size_factor", b.factor}, {"tets", b.tets}});
+      vj["target_tets_rounds"] = rounds;
+      if (const auto& t = v.meshing.restoration) {
+        vj["volume_restoration"] = {{"rounds", t->offsets.rounds},
+                                    {"nodes_moved", t->nodes_moved},
+                                    {"max_offset_mm", t->max_offset_mm},
+                                    {"nodes_held", t->offsets.frozen_vertices},
+                                    {"stopped_early", t->offsets.stopped_early}};
+      }
     }
     vj["quality"] = to_json(v.quality);
     vj["conformity"] = to_json(v.conformity);
@@ -579,9 +590,25 @@ std::string surface_job_text(const SurfaceJobResult& r) {
       }
       o << "\n";
     } else {
-      o << "\nvolume mesh (CGAL Mesh_3 from the surface, size field edge " << fmt("%.3f mm", v.size_mm) << "): "
-        << v.meshing.mesh.points.size() << " nodes, " << v.meshing.mesh.tets.size() << " tets, " << v.meshing.pieces
-        << " patch pieces\n\n";
+      o << "\nvolume mesh (CGAL Mesh_3 from the surface, size field edge " << fmt("%.3f mm", v.size_mm);
+      if (v.meshing.size_factor != 1.0) o << " x size factor " << fmt("%.3g", v.meshing.size_factor);
+      o << "): " << v.meshing.mesh.points.size() << " nodes, " << v.meshing.mesh.tets.size() << " tets, "
+        << v.meshing.pieces << " patch pieces\n";
+      if (!v.meshing.budget.empty()) {
+        o << "volume.target_tets: CGAL gave";
+        for (const SizeRound& b : v.meshing.budget) o << " " << b.tets;
+        o << " tets (size factor";
+        for (const SizeRound& b : v.meshing.budget) o << " " << fmt("%.3g", b.factor);
+        o << ")\n";
+      }
+      if (const auto& t = v.meshing.restoration) {
+        o << "tet volume restoration: " << t->offsets.rounds << " rounds of patch offsets moved " << t->nodes_moved
+          << " boundary and interface nodes, largest move " << fmt("%.3f", t->max_offset_mm) << " mm";
+        if (t->offsets.frozen_vertices > 0)
+          o << "; " << t->offsets.frozen_vertices << " nodes held where a round would have flattened a tet";
+        o << "\n";
+      }
+      o << "\n";
     }
     o << format_quality_table(v.quality) << "\n";
     o << format_conformity_table(v.conformity, v.meshing.mesh.tissue_names) << "\n";

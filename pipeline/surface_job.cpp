@@ -54,7 +54,11 @@ void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, const ThicknessS
     v.cell_edge_factor = t.cell_edge_factor;
     v.budget = std::move(t.budget);
   } else {
-    v.meshing = mesh_complex(r.surface(), h, config.volume, progress);
+    // CGAL resamples the surface: a restored surface would lose volume again in the chords of the
+    // tets' boundary, so the tets are restored too.
+    static const std::map<int, double> kNone;
+    v.meshing = mesh_complex(r.surface(), h, config.volume, progress,
+                             config.surface.restore_volumes ? r.voxel_volume_mm3 : kNone);
   }
   auto stage = progress.stage("volume mesh quality and conformity");
   v.quality = compute_quality(v.meshing.mesh, r.voxel_volume_mm3);

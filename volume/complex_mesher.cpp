@@ -9,11 +9,14 @@
 #include "volume/complex_mesher.h"
 
 #include "core/errors.h"
+#include "core/number_format.h"
+#include "volume/budget_refinement.h"
 #include "volume/free_cell_domain.h"
 #include "volume/mesh3_steps.h"
 #include "volume/surface_pieces.h"
 #include "surface/surface_projection.h"
 #include "surface/surface_quality.h"
+#include "volume/tet_volume_restoration.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
@@ -24,10 +27,12 @@
 #include <CGAL/Polyhedral_complex_mesh_domain_3.h>
 #include <CGAL/make_mesh_3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <utility>
 
 namespace tissuemesh {
@@ -41,6 +46,10 @@ using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_ta
 using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, Domain::Curve_index>;
 using Criteria = CGAL::Mesh_criteria_3<Tr>;
 using Point = K::Point_3;
+
+// Bounds of the size factor solved under volume.target_tets.
+constexpr double kFinestFactor = 0.25;
+constexpr double kCoarsestFactor = 16.0;
 
 // A CGAL sizing field: factor * h(x), mm, whatever the dimension and index.
 struct Sizing {
@@ -69,10 +78,35 @@ Polyhedron to_polyhedron(const SurfacePiece& piece) {
   return poly;
 }
 
+
+// Throws the InputError of a missed volume.target_tets, naming the counts and factors reached.
+void check_budget(std::size_t target, const std::vector<BudgetRound>& rounds, const std::vector<SizeRound>& sizes) {
+  if (!budget_missed(target, rounds)) return;
+  std::ostringstream e;
+  e << "volume.target_tets: a budget of " << target << " tets cannot be met on this surface; CGAL gave";
+  std::size_t fewest = rounds.front().count, most = 0;
+  for (const BudgetRound& b : rounds) {
+    e << " " << b.count;
+    fewest = std::min(fewest, b.count);
+    most = std::max(most, b.count);
+  }
+  e << " tets (size factors";
+  for (const SizeRound& b : sizes) e << " " << format_double("%.3g", b.factor);
+  e << ")";
+  if (rounds.back().count < target)
+    e << ": lower volume.target_tets to at most " << most;
+  else
+    e << ": the count no longer follows the sizes (thin layers and junctions hold it up); raise "
+         "volume.target_tets to at least "
+      << fewest + fewest / 10 << ", or lower surface.target_vertices";
+  throw InputError(e.str());
+}
+
 }  // namespace
 
 ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<double(const Eigen::Vector3d&)>& size_mm,
-                               const VolumeMeshParams& params, Progress& progress) {
+                               const VolumeMeshParams& params, Progress& progress,
+                               const std::map<int, double>& restore_to_mm3) {
   surface.validate("the surface to mesh");
   ComplexMeshResult result;
   std::vector<Polyhedron> polyhedra;
@@ -115,33 +149,13 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
       return cap > 0.0 ? std::min(e, cap) : e;
     };
   }
+  // The facet distance follows the grading of h: the given (or default) distance where h is at
+  // its largest over the surface (the remesher's L, s = 1), proportionally less where the surface
+  // is finer (the approach, thin parts).
+  double largest_h = 0.0;
+  for (const auto& x : surface.points) largest_h = std::max(largest_h, size_mm(x));
+  const double distance_mm = params.facet_distance_mm > 0 ? params.facet_distance_mm : 0.1 * mean_edge_mm;
 
-  namespace p = CGAL::parameters;
-  // The equilateral triangle of edge e has circumradius e / sqrt(3); the regular tet of edge e
-  // has circumradius e sqrt(6) / 4.
-  const Sizing edge{&size_mm, params.surface_edge_factor};
-  const Sizing facet{&size_mm, params.surface_edge_factor / std::sqrt(3.0)};
-  const Sizing cell{&cell_size_mm, params.cell_edge_factor * std::sqrt(6.0) / 4.0};
-  const double distance =
-      params.facet_distance_mm > 0 ? params.facet_distance_mm : 0.1 * mean_edge_mm;
-  Criteria criteria(p::edge_size = edge, p::facet_angle = params.facet_angle_deg, p::facet_size = facet,
-                    p::facet_distance = distance, p::cell_radius_edge_ratio = params.cell_radius_edge_ratio,
-                    p::cell_size = cell);
-
-  C3t3 c3t3;
-  {
-    auto stage = progress.stage("protect junctions, seed pieces");
-    CGAL::Mesh_3::internal::init_c3t3_with_features(c3t3, domain, criteria);
-    domain.add_vertices_to_c3t3_on_patch_without_feature_edges(c3t3);
-    result.initial_points = c3t3.triangulation().number_of_vertices();
-    stage.note(std::to_string(result.initial_points) + " initial points");
-  }
-  mesh3::refine(c3t3, domain, criteria, progress);
-  mesh3::optimise(c3t3, domain, params.optimise, progress, result.warnings);
-
-  auto stage = progress.stage("extract mesh");
-  result.mesh = mesh3::cells(
-      c3t3, [](double x, double y, double z) { return Eigen::Vector3d(x, y, z); }, false, surface.tissue_names);
   // The smoothing may move vertices of curved interfaces over the input surface (they stay on it);
   // the projection's trees are built only when it runs.
   SurfaceProjector onto_surface;
@@ -154,9 +168,78 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
       return true;
     };
   }
-  result.repair = repair_slivers(result.mesh, params.optimise, result.warnings, onto_surface);
-  stage.note(std::to_string(result.mesh.tets.size()) + " tets, " + std::to_string(result.mesh.points.size()) +
-             " nodes");
+
+  // One CGAL refinement and optimisation with every size (facet, junction edge, cell, facet
+  // distance) times `factor`; the tets counted are those before the sliver repair, which changes
+  // the count by a few.
+  std::unique_ptr<C3t3> c3t3;
+  auto refine_with = [&](double factor) {
+    namespace p = CGAL::parameters;
+    // The equilateral triangle of edge e has circumradius e / sqrt(3); the regular tet of edge e
+    // has circumradius e sqrt(6) / 4.
+    const Sizing edge{&size_mm, factor * params.surface_edge_factor};
+    const Sizing facet{&size_mm, factor * params.surface_edge_factor / std::sqrt(3.0)};
+    const Sizing cell{&cell_size_mm, factor * params.cell_edge_factor * std::sqrt(6.0) / 4.0};
+    const Sizing distance{&size_mm, factor * distance_mm / largest_h};
+    // A facet must have its three vertices on one patch (or its borders): in a layer thinner than
+    // the facets (the skin), a facet from one side to the other is refined by this rule rather
+    // than kept until the facet distance catches it, which a coarse distance would not.
+    Criteria criteria(p::edge_size = edge, p::facet_angle = params.facet_angle_deg, p::facet_size = facet,
+                      p::facet_distance = distance, p::cell_radius_edge_ratio = params.cell_radius_edge_ratio,
+                      p::cell_size = cell, p::facet_topology = CGAL::FACET_VERTICES_ON_SAME_SURFACE_PATCH);
+    c3t3 = std::make_unique<C3t3>();
+    {
+      auto stage = progress.stage("protect junctions, seed pieces");
+      CGAL::Mesh_3::internal::init_c3t3_with_features(*c3t3, domain, criteria);
+      domain.add_vertices_to_c3t3_on_patch_without_feature_edges(*c3t3);
+      result.initial_points = c3t3->triangulation().number_of_vertices();
+      stage.note(std::to_string(result.initial_points) + " initial points");
+    }
+    mesh3::refine(*c3t3, domain, criteria, progress);
+    result.warnings.clear();
+    mesh3::optimise(*c3t3, domain, params.optimise, progress, result.warnings);
+    result.size_factor = factor;
+    return static_cast<std::size_t>(c3t3->number_of_cells_in_complex());
+  };
+
+  if (params.target_tets == 0) {
+    refine_with(1.0);
+  } else {
+    // The count of a surface-bound mesh falls about as 1 / factor here (the facets of the surface
+    // go as factor^-2, but thin layers and junctions hold part of the count up), so the rounds
+    // solve in the measure R = 1 / factor, from a first factor guessed at about four tets per
+    // surface triangle at factor 1.
+    const double guess = 4.0 * static_cast<double>(surface.triangles.size()) / static_cast<double>(params.target_tets);
+    const double start = std::clamp(guess, kFinestFactor, kCoarsestFactor);
+    const std::vector<BudgetRound> rounds = meet_count_budget(params.target_tets, [&](double R) {
+      const double factor = std::clamp(R > 0.0 ? 1.0 / R : start, kFinestFactor, kCoarsestFactor);
+      return BudgetRound{1.0 / factor, refine_with(factor), factor <= kFinestFactor};
+    });
+    for (const BudgetRound& b : rounds) result.budget.push_back({1.0 / b.measure, b.count});
+    check_budget(params.target_tets, rounds, result.budget);
+  }
+
+  {
+    auto stage = progress.stage("extract mesh");
+    result.mesh = mesh3::cells(
+        *c3t3, [](double x, double y, double z) { return Eigen::Vector3d(x, y, z); }, false, surface.tissue_names);
+    c3t3.reset();
+    stage.note(std::to_string(result.mesh.tets.size()) + " tets, " + std::to_string(result.mesh.points.size()) +
+               " nodes");
+  }
+  {
+    auto stage = progress.stage("sliver repair");
+    result.repair = repair_slivers(result.mesh, params.optimise, result.warnings, onto_surface);
+    stage.note(std::to_string(result.mesh.tets.size()) + " tets");
+  }
+  // After the repairs: their flips across interfaces and projections onto the input surface
+  // would undo part of it, and it lowers no tet under 10 degrees (tet_volume_restoration.h).
+  if (!restore_to_mm3.empty()) {
+    auto stage = progress.stage("tet volume restoration");
+    result.restoration = restore_tet_volumes(result.mesh, restore_to_mm3);
+    stage.note(std::to_string(result.restoration->offsets.rounds) + " rounds, " +
+               std::to_string(result.restoration->nodes_moved) + " nodes moved");
+  }
   return result;
 }
 

@@ -28,8 +28,6 @@ VolumeMeshParams VolumeMeshParams::from_yaml(YamlMap& m) {
   p.facet_distance_mm = m.in_range("facet_distance_mm", p.facet_distance_mm, 0.0, 1e6);
   p.cell_radius_edge_ratio = m.in_range("cell_radius_edge_ratio", p.cell_radius_edge_ratio, 2.0, 100.0);
   p.optimise.read(m);
-  if (p.mesher == "cgal" && p.target_tets > 0)
-    throw InputError(m.where("target_tets") + ": needs volume.mesher: tetgen (CGAL's count follows cell_growth)");
   if (p.mesher == "tetgen" && (p.cell_growth > 0.0 || p.max_cell_edge_mm > 0.0))
     throw InputError(m.where(p.cell_growth > 0.0 ? "cell_growth" : "max_cell_edge_mm") +
                      ": CGAL only; with volume.mesher: tetgen the interior follows the surface's sizes "

@@ -19,8 +19,9 @@ struct VolumeMeshParams {
   /// "cgal": CGAL Mesh_3 from the surface complex (complex_mesher.h), which resamples the surface;
   /// "tetgen": TetGen from the surface itself, every surface triangle kept (surface_tetgen.h).
   std::string mesher = "cgal";
-  /// With mesher tetgen: total tets to aim for (0 = none); cell_edge_factor is then solved so that
-  /// the count lands within 10 % (surface_tetgen.h). An InputError with mesher cgal.
+  /// Total tets to aim for (0 = none), met within 10 %. With mesher tetgen, cell_edge_factor is
+  /// solved (surface_tetgen.h); with mesher cgal, one factor multiplying every size and the facet
+  /// distance (complex_mesher.h), the surface then resampled coarser or finer.
   std::size_t target_tets = 0;
   /// Target surface (and junction) edge length relative to h(x): the facet size criterion is the
   /// circumradius of the equilateral triangle of that edge, the feature edge size the edge itself.
@@ -45,8 +46,9 @@ struct VolumeMeshParams {
   /// degrees, and their protecting balls crowd into sub-0.1 mm tets).
   double feature_angle_deg = 180.0;
   double facet_angle_deg = 25.0;        ///< min surface triangle angle, degrees (<= 30 terminates)
-  /// Max distance between a surface triangle of the tet mesh and the input surface, mm; 0 = a
-  /// tenth of the input surface's mean edge length.
+  /// Max distance between a surface triangle of the tet mesh and the input surface, mm, where h(x)
+  /// is largest over the surface (less where h is smaller, in proportion); 0 = a tenth of the input
+  /// surface's mean edge length.
   double facet_distance_mm = 0.0;
   double cell_radius_edge_ratio = 2.0;  ///< max tet circumradius / shortest edge (>= 2 terminates)
   Mesh3Optimisation optimise;           ///< optimisation and sliver repair (mesh3_optimisation.h)

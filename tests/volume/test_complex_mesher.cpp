@@ -16,6 +16,8 @@
 #include "volume/surface_pieces.h"
 #include "surface/surface_projection.h"
 #include "surface/surface_remesh.h"
+#include "surface/volume_restoration.h"
+#include "core/errors.h"
 #include "support/complex_meshes.h"
 #include "support/tolerances.h"
 
@@ -23,8 +25,10 @@
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
+#include <iostream>
 #include <map>
 #include <set>
+#include <string>
 
 using namespace tissuemesh;
 using namespace tissuemesh::test;
@@ -238,4 +242,57 @@ TEST(ComplexMesher, InteriorGradingGrowsTetsAwayFromTheSurfaceOnly) {
   VolumeMeshParams capped = graded;
   capped.max_cell_edge_mm = s.edge_length_mm;
   EXPECT_EQ(mesh(s, capped).mesh.tets.size(), u.mesh.tets.size());
+}
+
+TEST(ComplexMesher, ATetBudgetIsMetByOneSizeFactor) {
+  // A third of the tets of the default sizes: the rounds find one factor (> 1: coarser) that
+  // lands within 10 %, and the mesh is conforming with every tissue's volume restored.
+  const RemeshResult s = remeshed(nested_spheres(), 2, 300);
+  const std::size_t as_given = mesh(s).mesh.tets.size();
+  VolumeMeshParams budget;
+  budget.target_tets = as_given / 3;
+  Progress progress;
+  const double h = s.edge_length_mm;
+  const std::map<int, double> reference = enclosed_volumes(s.surface);
+  const ComplexMeshResult r =
+      mesh_complex(s.surface, [h](const Eigen::Vector3d&) { return h; }, budget, progress, reference);
+  std::cout << "[ volume   ] budget " << budget.target_tets << ": " << r.mesh.tets.size() << " tets at factor "
+            << r.size_factor << " after " << r.budget.size() << " rounds (" << as_given << " as given)\n";
+  EXPECT_NEAR(static_cast<double>(r.mesh.tets.size()) / budget.target_tets, 1.0, 0.1);
+  EXPECT_GT(r.size_factor, 1.0);
+  ASSERT_FALSE(r.budget.empty());
+  EXPECT_EQ(r.budget.back().factor, r.size_factor);
+  EXPECT_TRUE(check_conformity(r.mesh).conforming());
+  EXPECT_GE(compute_quality(r.mesh).total.min_dihedral_deg, kComplexMeshMinDihedralDeg);
+  ASSERT_TRUE(r.restoration.has_value());
+  const std::vector<double> volume = tissue_volumes(r.mesh);
+  for (const auto& [id, v] : reference) EXPECT_NEAR(volume[id] / v, 1.0, 1e-3) << "tissue " << id;
+  // A budget far below what the surface needs names the key and what it reached.
+  VolumeMeshParams impossible;
+  impossible.target_tets = 20;
+  try {
+    mesh_complex(s.surface, [h](const Eigen::Vector3d&) { return h; }, impossible, progress);
+    ADD_FAILURE() << "a budget of 20 tets was met";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("volume.target_tets"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ComplexMesher, AShellThinnerThanTheFacetsIsNotBridged) {
+  // A one-voxel shell around a ball, meshed with facets twice the surface edge and a facet
+  // distance as large as the shell is thick: a facet from the shell's outside to its inside would
+  // pass the distance test, and only the rule that a facet's vertices lie on one patch keeps the
+  // shell (its tets would otherwise go to the ball or outside).
+  const RemeshResult s = remeshed(thin_shell(), 2, 600);
+  VolumeMeshParams coarse;
+  coarse.surface_edge_factor = 2.0;
+  coarse.cell_edge_factor = 3.0;
+  coarse.facet_distance_mm = 1.0;
+  const ComplexMeshResult r = mesh(s, coarse);
+  const std::vector<double> volume = tissue_volumes(r.mesh);
+  const std::map<int, double> enclosed = enclosed_volumes(s.surface);
+  std::cout << "[ volume   ] shell " << volume[2] / enclosed.at(2) - 1.0 << ", ball " << volume[1] / enclosed.at(1) - 1.0
+            << "\n";
+  EXPECT_NEAR(volume[2] / enclosed.at(2), 1.0, 0.1);
+  EXPECT_TRUE(check_conformity(r.mesh).conforming());
 }
