@@ -141,8 +141,40 @@ struct TetFrame {
   /// opposite edge (5 - i). With inward normals the interior angle is pi minus the angle between
   /// them; atan2 stays accurate near 0 and 180 degrees where acos of a cosine loses half the digits.
   double dihedral_deg(std::size_t i) const {
+    const auto [sine, cosine] = dihedral_sin_cos(i);
+    return std::atan2(sine, cosine) * kDegPerRad;
+  }
+  /// The arguments of dihedral_deg's atan2: |sin| and cos of the angle times the same positive
+  /// factor (the product of the two face areas, doubled).
+  std::pair<double, double> dihedral_sin_cos(std::size_t i) const {
     const auto [k, l] = kTetEdges[5 - i];
-    return std::atan2(n[k].cross(n[l]).norm(), -n[k].dot(n[l])) * kDegPerRad;
+    return {n[k].cross(n[l]).norm(), -n[k].dot(n[l])};
+  }
+  /// The smallest of the six dihedral_deg, the same double, with one atan2 where the angles are
+  /// apart: in [0, pi] the angle of (cos, sin) grows as the cross product of two such vectors
+  /// says, so the smallest is found by comparisons, and only it and the angles within 1e-10 rad
+  /// of it (a tie, or a comparison rounding could have got wrong) go through atan2.
+  double min_dihedral_deg() const {
+    std::array<std::pair<double, double>, 6> v;
+    for (std::size_t i = 0; i < 6; ++i) v[i] = dihedral_sin_cos(i);
+    // (theta_j - theta_i) has the sign of cos_i sin_j - sin_i cos_j.
+    auto ahead = [&](std::size_t i, std::size_t j) { return v[i].second * v[j].first - v[i].first * v[j].second; };
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < 6; ++i)
+      if (ahead(i, best) > 0.0) best = i;
+    constexpr double kTieRad = 1e-10;
+    const double best_norm2 = v[best].first * v[best].first + v[best].second * v[best].second;
+    double smallest = 0.0;
+    bool first = true;
+    for (std::size_t i = 0; i < 6; ++i) {
+      const double gap = ahead(best, i);  // > 0: angle i above the best
+      const double norm2 = v[i].first * v[i].first + v[i].second * v[i].second;
+      if (i != best && gap > 0.0 && gap * gap > kTieRad * kTieRad * best_norm2 * norm2) continue;
+      const double angle = std::atan2(v[i].first, v[i].second) * kDegPerRad;
+      if (first || angle < smallest) smallest = angle;  // std::min_element's rule, as over tet_shape's
+      first = false;
+    }
+    return smallest;
   }
 };
 
@@ -151,12 +183,7 @@ struct TetFrame {
 TetVolumeAndAngle tet_volume_and_min_dihedral(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                               const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
   const TetFrame f(a, b, c, d);
-  double smallest = f.dihedral_deg(0);
-  for (std::size_t i = 1; i < kTetEdges.size(); ++i) {
-    const double angle = f.dihedral_deg(i);
-    if (angle < smallest) smallest = angle;  // std::min_element's rule over tet_shape's angles
-  }
-  return {f.det / 6.0, smallest};
+  return {f.det / 6.0, f.min_dihedral_deg()};
 }
 
 TetShape tet_shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
