@@ -149,11 +149,6 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
       return cap > 0.0 ? std::min(e, cap) : e;
     };
   }
-  // The facet distance follows the grading of h: the given (or default) distance where h is at
-  // its largest over the surface (the remesher's L, s = 1), proportionally less where the surface
-  // is finer (the approach, thin parts).
-  double largest_h = 0.0;
-  for (const auto& x : surface.points) largest_h = std::max(largest_h, size_mm(x));
   const double distance_mm = params.facet_distance_mm > 0 ? params.facet_distance_mm : 0.1 * mean_edge_mm;
 
   // The smoothing may move vertices of curved interfaces over the input surface (they stay on it);
@@ -180,13 +175,16 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
     const Sizing edge{&size_mm, factor * params.surface_edge_factor};
     const Sizing facet{&size_mm, factor * params.surface_edge_factor / std::sqrt(3.0)};
     const Sizing cell{&cell_size_mm, factor * params.cell_edge_factor * std::sqrt(6.0) / 4.0};
-    const Sizing distance{&size_mm, factor * distance_mm / largest_h};
-    // A facet must have its three vertices on one patch (or its borders): in a layer thinner than
-    // the facets (the skin), a facet from one side to the other is refined by this rule rather
-    // than kept until the facet distance catches it, which a coarse distance would not.
+    // Under a budget a facet must have its three vertices on one patch (or its borders): the
+    // facet distance grows with the factor, and in a layer thinner than the facets (the skin) a
+    // facet from one side to the other would pass it (skin -25 % on the phantom at a factor of
+    // 6); this rule refines such a facet whatever the distance. Without a budget the default
+    // distance catches them, and the rule would only add tets (15 % at 2.1K).
+    const CGAL::Mesh_facet_topology topology =
+        params.target_tets > 0 ? CGAL::FACET_VERTICES_ON_SAME_SURFACE_PATCH : CGAL::FACET_VERTICES_ON_SURFACE;
     Criteria criteria(p::edge_size = edge, p::facet_angle = params.facet_angle_deg, p::facet_size = facet,
-                      p::facet_distance = distance, p::cell_radius_edge_ratio = params.cell_radius_edge_ratio,
-                      p::cell_size = cell, p::facet_topology = CGAL::FACET_VERTICES_ON_SAME_SURFACE_PATCH);
+                      p::facet_distance = factor * distance_mm, p::cell_radius_edge_ratio = params.cell_radius_edge_ratio,
+                      p::cell_size = cell, p::facet_topology = topology);
     c3t3 = std::make_unique<C3t3>();
     {
       auto stage = progress.stage("protect junctions, seed pieces");

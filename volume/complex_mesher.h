@@ -7,16 +7,15 @@
 // with its incident subdomains (p on the side opposite the normal, q on the normal's side). Piece
 // borders (junction curves) and creases sharper than feature_angle_deg are protected as polyline
 // features; pieces without borders get initial points of their own. Sizes follow `size_mm(x)`
-// (the surface's field h(x), mm; volume_mesh_params.h gives the factors), and so does the facet
-// distance (the given distance where h is largest over the surface, proportionally less where h
-// is smaller); a facet must have its vertices on one patch (CGAL's
-// FACET_VERTICES_ON_SAME_SURFACE_PATCH), so a thin layer is never bridged by a facet. Then the
-// optimisation and sliver repairs of Mesh3Optimisation.
+// (the surface's field h(x), mm; volume_mesh_params.h gives the factors). Then the optimisation
+// and sliver repairs of Mesh3Optimisation.
 //
 // A tet budget (params.target_tets > 0): every size and the facet distance are multiplied by one
-// factor, solved by the rounds of volume/budget_refinement.h (count about factor^-2), each round
-// a whole run; the mesh of the last round is kept. CGAL resamples the surface, so the tets then
-// have fewer boundary nodes than the surface has vertices (the seed paper's Table 2 shows the same).
+// factor, solved by the rounds of volume/budget_refinement.h (count about 1 / factor here), each
+// round a CGAL refinement; the last round's is kept. A facet must then have its vertices on one
+// patch (CGAL's FACET_VERTICES_ON_SAME_SURFACE_PATCH), so the larger facet distance never lets a
+// facet bridge a thin layer. CGAL resamples the surface, so the tets then have fewer boundary
+// nodes than the surface has vertices (the seed paper's Table 2 shows the same).
 //
 // Volume restoration (`restore_to_mm3` not empty): after the sliver repair, the boundary and
 // interface nodes move so that every tissue's tets fill its reference volume again

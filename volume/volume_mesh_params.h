@@ -46,9 +46,8 @@ struct VolumeMeshParams {
   /// degrees, and their protecting balls crowd into sub-0.1 mm tets).
   double feature_angle_deg = 180.0;
   double facet_angle_deg = 25.0;        ///< min surface triangle angle, degrees (<= 30 terminates)
-  /// Max distance between a surface triangle of the tet mesh and the input surface, mm, where h(x)
-  /// is largest over the surface (less where h is smaller, in proportion); 0 = a tenth of the input
-  /// surface's mean edge length.
+  /// Max distance between a surface triangle of the tet mesh and the input surface, mm (times the
+  /// size factor under target_tets); 0 = a tenth of the input surface's mean edge length.
   double facet_distance_mm = 0.0;
   double cell_radius_edge_ratio = 2.0;  ///< max tet circumradius / shortest edge (>= 2 terminates)
   Mesh3Optimisation optimise;           ///< optimisation and sliver repair (mesh3_optimisation.h)
