@@ -42,6 +42,14 @@ CoarseMesh coarse_mesh(double factor) {
 
 double min_dihedral(const TetMesh& m) { return compute_quality(m).total.min_dihedral_deg; }
 
+// Conforming, nothing inverted, no tet under `floor_deg`.
+void expect_valid_above(const TetMesh& m, double floor_deg) {
+  const ConformityReport conformity = check_conformity(m);
+  EXPECT_TRUE(conformity.conforming());
+  EXPECT_EQ(conformity.inverted_tets, 0u);
+  EXPECT_GE(min_dihedral(m), floor_deg);
+}
+
 // Every node on a boundary or interface.
 std::vector<char> surface_nodes(const TetMesh& m) {
   std::vector<int> node_of_point;
@@ -85,10 +93,7 @@ TEST(TetVolumeRestoration, ACoarseResamplingGetsTheSurfaceVolumesBack) {
     EXPECT_TRUE(on_surface[n]) << "interior node " << n << " moved";
   }
   EXPECT_EQ(moved, r.nodes_moved);
-  const ConformityReport conformity = check_conformity(c.mesh);
-  EXPECT_TRUE(conformity.conforming());
-  EXPECT_EQ(conformity.inverted_tets, 0u);
-  EXPECT_GE(min_dihedral(c.mesh), floor_deg);
+  expect_valid_above(c.mesh, floor_deg);
 }
 
 // Asked for 2.3 times the inner ball (a radius of 6.6 mm inside the outer 9 mm), the tets between
@@ -105,10 +110,7 @@ TEST(TetVolumeRestoration, NodesAreHeldRatherThanFlattenATet) {
             << " nodes held\n";
   EXPECT_GT(r.offsets.frozen_vertices, 0u);
   EXPECT_GT(after[2], before[2]);  // it grew as far as it could
-  const ConformityReport conformity = check_conformity(c.mesh);
-  EXPECT_TRUE(conformity.conforming());
-  EXPECT_EQ(conformity.inverted_tets, 0u);
-  EXPECT_GE(min_dihedral(c.mesh), floor_deg);
+  expect_valid_above(c.mesh, floor_deg);
 }
 
 TEST(TetVolumeRestoration, BadReferenceIsAnInputError) {
