@@ -56,6 +56,12 @@ class Fields {
   [[noreturn]] void fail(const std::string& what) const { throw InputError(path_ + ": " + what); }
 
   void set(const std::string& name, const std::string& value) { values_[key(name)] = trim(value); }
+  /// As set, but a field given before (in any spelling that matches) is an error: NRRD forbids
+  /// it, and VTK's reader would read the fields in order where this parser keeps the last.
+  void set_once(const std::string& name, const std::string& value) {
+    if (values_.count(key(name))) fail("NRRD field '" + name + "' is given more than once");
+    set(name, value);
+  }
 
   /// The value of the first of `names` present, or nullptr.
   const std::string* find(std::initializer_list<const char*> names) const {
@@ -318,7 +324,7 @@ ImageHeader read_nrrd_header(const std::string& path) {
     const std::size_t colon = line.find(": "), key_value = line.find(":=");
     if (ended || line[0] == '#' || key_value < colon) continue;  // comment or "key:=value"
     if (colon == std::string::npos) f.fail("NRRD header line '" + line + "' is not 'field: value'");
-    f.set(line.substr(0, colon), line.substr(colon + 2));
+    f.set_once(line.substr(0, colon), line.substr(colon + 2));
   }
 
   ImageHeader h;
@@ -378,6 +384,11 @@ ImageHeader read_nrrd_header(const std::string& path) {
     f.fail(
         "NRRD header places the image in space but names no anatomical 'space', so patient "
         "orientation is unknown");
+  }
+  // VTK's reader sizes its axis lists by this number as it goes: only 3 is a 3-D patient space.
+  if (const std::string* dimension = f.find({"space dimension"})) {
+    if (f.number<long long>(*dimension, "space dimension") != 3)
+      f.fail("NRRD 'space dimension' " + *dimension + " is not 3");
   }
   const Eigen::Matrix3d to_lps = space ? nrrd_space_to_lps(*space, f) : Eigen::Matrix3d::Identity();
   // Without directions the axes are those of the space, `spacings` (default 1 mm) apart.

@@ -13,7 +13,8 @@
 // unknown), `space directions` (one vector per spatial axis, length = spacing), `space origin`,
 // `space units` (mm only), `spacings` (used only without `space directions`: the axes are those
 // of the space), `kinds`, `data file` (one detached file, relative to the header's folder),
-// `byte skip`/`line skip` (0 only). Comments (#) and key/value pairs (key:=value) are skipped.
+// `byte skip`/`line skip` (0 only), `space dimension` (3 only). A field given twice is refused.
+// Comments (#) and key/value pairs (key:=value) are skipped.
 //
 // MetaImage (ITK's MetaIO): NDims (3), DimSize, ElementType (MET_CHAR ... MET_DOUBLE),
 // ElementNumberOfChannels, ElementSpacing, Offset (a.k.a. Position, Origin), TransformMatrix

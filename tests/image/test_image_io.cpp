@@ -451,6 +451,14 @@ TEST(ImageIo, RefusesBadInputNamingTheFile) {
              "encoding: raw\n\n" +
                  voxel_bytes<std::uint8_t>(volume));
   expect_refused(dir / "scanner.nrrd", {"scanner-xyz"});
+  // A field given twice (here in two spellings) would be read differently by VTK, which takes
+  // them in order: a huge first 'dimension' sized its axis list before the second corrected it.
+  const std::string valid = "type: uchar\nsizes: 7 5 4\nencoding: raw\n\n" + voxel_bytes<std::uint8_t>(volume);
+  write_file(dir / "twice.nrrd", "NRRD0004\nDimension: 77777777777777\ndimension: 3\n" + valid);
+  expect_refused(dir / "twice.nrrd", {"'dimension'", "more than once"});
+  write_file(dir / "space_dimension.nrrd",
+             "NRRD0004\ndimension: 3\nspace: left-posterior-superior\nspace dimension: 77777777\n" + valid);
+  expect_refused(dir / "space_dimension.nrrd", {"space dimension", "not 3"});
   std::string noise(2000, '\0');
   std::uint32_t state = 99;
   for (char& c : noise) c = static_cast<char>(next_random_byte(state));
