@@ -196,11 +196,13 @@ class Smoother {
       return min_deg > o.min_deg || (min_deg == o.min_deg && shortfall < o.shortfall);
     }
   };
-  StarQuality star_quality(int v) const {
+  /// With `floor_deg`: stops (min_deg -inf) at the first tet under it, whose star cannot beat one
+  /// whose smallest angle is at least floor_deg; the figures of a star that passes are the same.
+  StarQuality star_quality(int v, double floor_deg = -std::numeric_limits<double>::infinity()) const {
     StarQuality q;
     for (std::size_t i = star_start_[v]; i < star_start_[v + 1]; ++i) {
       const TetVolumeAndAngle s = shape(mesh_, mesh_.tets[star_[i]]);
-      if (!(s.volume_mm3 > 0)) {
+      if (!(s.volume_mm3 > 0) || s.min_dihedral_deg < floor_deg) {
         q.min_deg = -std::numeric_limits<double>::infinity();
         return q;
       }
@@ -280,7 +282,14 @@ class Smoother {
           if (mobility.kind == Mobility::kOffSurface &&
               (p - origin_[static_cast<std::size_t>(v)]).norm() > max_offset_[static_cast<std::size_t>(v)])
             continue;
-          const StarQuality q = star_quality(v);
+          // A candidate with a tet under the best star's smallest angle (capped at the target off
+          // the surface) loses whatever its other tets, so the best star's worst tet is tried
+          // first and the rest of the star only while every tet stays at or over that angle.
+          const double floor_deg = off_surface ? std::min(best.min_deg, target_deg_) : best.min_deg;
+          const std::array<int, 4>& w = mesh_.tets[best.worst];
+          const TetVolumeAndAngle at_worst = shape(mesh_, w);
+          if (!(at_worst.volume_mm3 > 0) || at_worst.min_dihedral_deg < floor_deg) continue;
+          const StarQuality q = star_quality(v, floor_deg);
           if (better(q, best)) {
             best = q;
             best_point = p;
