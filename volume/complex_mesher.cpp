@@ -189,7 +189,7 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
     {
       auto stage = progress.stage("protect junctions, seed pieces");
       CGAL::Mesh_3::internal::init_c3t3_with_features(*c3t3, domain, criteria);
-      domain.add_vertices_to_c3t3_on_patch_without_feature_edges(*c3t3);
+      domain.add_patch_seeds(*c3t3);
       result.initial_points = c3t3->triangulation().number_of_vertices();
       stage.note(std::to_string(result.initial_points) + " initial points" +
                  (params.target_tets > 0 ? ", size factor " + format_double("%.3g", factor) : std::string()));

@@ -22,9 +22,14 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <type_traits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -93,7 +98,115 @@ class FreeCellDomain : public ComplexDomain {
   };
   Construct_intersection construct_intersection_object() const { return Construct_intersection{*this}; }
 
+  /// CGAL's add_vertices_to_c3t3_on_patch_without_feature_edges (the same points, drawn from the
+  /// same random sequence): up to 20 polyhedron vertices per patch outside every protecting ball
+  /// are sampled; a closed patch gets all of its samples as surface vertices, a patch with feature
+  /// edges the one farthest from its nearest power vertex. "Outside every ball" is CGAL's test
+  /// (the nearest power vertex's ball does not hold the point, which is the case exactly when no
+  /// ball holds it), asked here of the balls near the point in a grid of the ball centres instead
+  /// of by a walk through the triangulation for each of the polyhedra's vertices.
+  template <class C3t3>
+  void add_patch_seeds(C3t3& c3t3) const {
+    using Tr = typename C3t3::Triangulation;
+    using Vertex = typename Polyhedron::Vertex_const_handle;
+    Tr& tr = c3t3.triangulation();
+    const auto cw = tr.geom_traits().compute_weight_3_object();
+    const auto cp = tr.geom_traits().construct_point_3_object();
+    const auto cwp = tr.geom_traits().construct_weighted_point_3_object();
+    const BallGrid balls(tr, cp, cw);
+    CGAL::Random random(0);
+    const std::size_t patches = this->nb_of_patch_plus_one();
+    constexpr std::size_t kPerPatch = 20;
+    std::vector<std::size_t> free_on_patch(patches, 0);
+    for (const Polyhedron& p : this->polyhedra())
+      for (auto v = p.vertices_begin(); v != p.vertices_end(); ++v)
+        if (!v->is_feature_vertex() && !balls.holds(v->point())) ++free_on_patch[v->halfedge()->face()->patch_id()];
+    std::vector<std::size_t> needed(patches);
+    for (std::size_t i = 0; i < patches; ++i) needed[i] = std::min(kPerPatch, free_on_patch[i]);
+    std::vector<std::vector<Vertex>> samples(patches);
+    for (const Polyhedron& p : this->polyhedra())
+      for (auto v = p.vertices_begin(); v != p.vertices_end(); ++v) {
+        if (v->is_feature_vertex()) continue;
+        const std::size_t patch = static_cast<std::size_t>(v->halfedge()->face()->patch_id());
+        if (needed[patch] == 0 || balls.holds(v->point())) continue;
+        // SGI's random_sample_n, as in CGAL.
+        if (random.uniform_smallint(std::uint32_t(0), std::uint32_t(free_on_patch[patch])) < std::uint32_t(needed[patch])) {
+          samples[patch].push_back(v);
+          --needed[patch];
+        }
+        --free_on_patch[patch];
+      }
+    for (std::size_t patch = 1; patch < patches; ++patch) {
+      std::vector<Vertex> inserted;
+      if (!this->patch_has_featured_edges.test(patch)) {
+        inserted = samples[patch];
+      } else if (!samples[patch].empty()) {
+        Vertex far = samples[patch].front();
+        double far_d2 = CGAL::squared_distance(far->point(), tr.point(tr.nearest_power_vertex(far->point())).point());
+        for (std::size_t i = 1; i < samples[patch].size(); ++i) {
+          const Vertex other = samples[patch][i];
+          const double d2 = CGAL::squared_distance(other->point(), tr.point(tr.nearest_power_vertex(other->point())).point());
+          if (d2 > far_d2) {
+            far = other;
+            far_d2 = d2;
+          }
+        }
+        inserted = {far};
+      }
+      for (const Vertex& v : inserted) {
+        const auto tv = tr.insert(cwp(v->point()));
+        c3t3.set_dimension(tv, 2);
+        c3t3.set_index(tv, static_cast<Patch_id>(patch));
+      }
+    }
+  }
+
  private:
+  // The triangulation's vertices as balls (centre, squared radius = weight) in a grid whose cells
+  // are as wide as the largest radius, so a ball holding a point has its centre in one of the 27
+  // cells around it.
+  class BallGrid {
+   public:
+    template <class Tr, class CP, class CW>
+    BallGrid(const Tr& tr, const CP& cp, const CW& cw) {
+      for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v) {
+        const auto& wp = tr.point(v);
+        balls_.emplace_back(cp(wp), cw(wp));
+        cell_ = std::max(cell_, std::sqrt(std::max(0.0, balls_.back().squared_radius())));
+      }
+      cell_ = cell_ > 0 ? 1.000001 * cell_ : 1.0;
+      for (std::size_t i = 0; i < balls_.size(); ++i) cells_[key(balls_[i].center())].push_back(i);
+    }
+    /// True when a ball holds p (on or inside its sphere).
+    bool holds(const Point_3& p) const {
+      const std::array<std::int64_t, 3> c = cell(p);
+      for (std::int64_t i = -1; i <= 1; ++i)
+        for (std::int64_t j = -1; j <= 1; ++j)
+          for (std::int64_t k = -1; k <= 1; ++k) {
+            const auto it = cells_.find(pack({c[0] + i, c[1] + j, c[2] + k}));
+            if (it == cells_.end()) continue;
+            for (std::size_t b : it->second)
+              if (!balls_[b].has_on_unbounded_side(p)) return true;
+          }
+      return false;
+    }
+
+   private:
+    std::array<std::int64_t, 3> cell(const Point_3& p) const {
+      return {std::int64_t(std::floor(p.x() / cell_)), std::int64_t(std::floor(p.y() / cell_)),
+              std::int64_t(std::floor(p.z() / cell_))};
+    }
+    static std::uint64_t pack(const std::array<std::int64_t, 3>& c) {
+      // 21 bits per axis: cells as wide as the largest ball over an image of any real size.
+      return (std::uint64_t(c[0] & 0x1FFFFF) << 42) | (std::uint64_t(c[1] & 0x1FFFFF) << 21) | std::uint64_t(c[2] & 0x1FFFFF);
+    }
+    std::uint64_t key(const Point_3& p) const { return pack(cell(p)); }
+    std::vector<CGAL::Epick::Sphere_3> balls_;
+    double cell_ = 0.0;
+    std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+  };
+
+
   std::optional<FreeCellGrid> grid_;
   std::vector<Subdomain> regions_;  ///< per grid component
   std::vector<char> known_;         ///< per grid component: its seed's three rays agreed
