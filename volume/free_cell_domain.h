@@ -14,6 +14,7 @@
 #pragma once
 
 #include "core/tri_surface.h"
+#include "surface/box_grid.h"
 #include "volume/free_cell_grid.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -23,13 +24,11 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <type_traits>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -103,8 +102,8 @@ class FreeCellDomain : public ComplexDomain {
   /// are sampled; a closed patch gets all of its samples as surface vertices, a patch with feature
   /// edges the one farthest from its nearest power vertex. "Outside every ball" is CGAL's test
   /// (the nearest power vertex's ball does not hold the point, which is the case exactly when no
-  /// ball holds it), asked here of the balls near the point in a grid of the ball centres instead
-  /// of by a walk through the triangulation for each of the polyhedra's vertices.
+  /// ball holds it), asked here of the balls listed in the point's cell of a grid of their boxes
+  /// instead of by a walk through the triangulation for each of the polyhedra's vertices.
   template <class C3t3>
   void add_patch_seeds(C3t3& c3t3) const {
     using Tr = typename C3t3::Triangulation;
@@ -141,16 +140,14 @@ class FreeCellDomain : public ComplexDomain {
       if (!this->patch_has_featured_edges.test(patch)) {
         inserted = samples[patch];
       } else if (!samples[patch].empty()) {
+        auto gap = [&](Vertex v) { return CGAL::squared_distance(v->point(), tr.point(tr.nearest_power_vertex(v->point())).point()); };
         Vertex far = samples[patch].front();
-        double far_d2 = CGAL::squared_distance(far->point(), tr.point(tr.nearest_power_vertex(far->point())).point());
-        for (std::size_t i = 1; i < samples[patch].size(); ++i) {
-          const Vertex other = samples[patch][i];
-          const double d2 = CGAL::squared_distance(other->point(), tr.point(tr.nearest_power_vertex(other->point())).point());
-          if (d2 > far_d2) {
-            far = other;
-            far_d2 = d2;
+        double far_gap = gap(far);
+        for (std::size_t i = 1; i < samples[patch].size(); ++i)
+          if (const double g = gap(samples[patch][i]); g > far_gap) {
+            far = samples[patch][i];
+            far_gap = g;
           }
-        }
         inserted = {far};
       }
       for (const Vertex& v : inserted) {
@@ -162,50 +159,35 @@ class FreeCellDomain : public ComplexDomain {
   }
 
  private:
-  // The triangulation's vertices as balls (centre, squared radius = weight) in a grid whose cells
-  // are as wide as the largest radius, so a ball holding a point has its centre in one of the 27
-  // cells around it.
+  // The triangulation's vertices as balls (centre, squared radius = weight), each listed in the
+  // cells of a BoxGrid that its bounding box (padded against round-off) touches.
   class BallGrid {
    public:
     template <class Tr, class CP, class CW>
-    BallGrid(const Tr& tr, const CP& cp, const CW& cw) {
-      for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v) {
-        const auto& wp = tr.point(v);
-        balls_.emplace_back(cp(wp), cw(wp));
-        cell_ = std::max(cell_, std::sqrt(std::max(0.0, balls_.back().squared_radius())));
-      }
-      cell_ = cell_ > 0 ? 1.000001 * cell_ : 1.0;
-      for (std::size_t i = 0; i < balls_.size(); ++i) cells_[key(balls_[i].center())].push_back(i);
-    }
+    BallGrid(const Tr& tr, const CP& cp, const CW& cw) : cells_(boxes(tr, cp, cw)) {}
     /// True when a ball holds p (on or inside its sphere).
     bool holds(const Point_3& p) const {
-      const std::array<std::int64_t, 3> c = cell(p);
-      for (std::int64_t i = -1; i <= 1; ++i)
-        for (std::int64_t j = -1; j <= 1; ++j)
-          for (std::int64_t k = -1; k <= 1; ++k) {
-            const auto it = cells_.find(pack({c[0] + i, c[1] + j, c[2] + k}));
-            if (it == cells_.end()) continue;
-            for (std::size_t b : it->second)
-              if (!balls_[b].has_on_unbounded_side(p)) return true;
-          }
-      return false;
+      const std::int64_t c = cells_.index(cells_.cell_of(Eigen::Vector3d(p.x(), p.y(), p.z())));
+      return std::any_of(cells_.begin(c), cells_.end(c), [&](int b) { return !balls_[b].has_on_unbounded_side(p); });
     }
 
    private:
-    std::array<std::int64_t, 3> cell(const Point_3& p) const {
-      return {std::int64_t(std::floor(p.x() / cell_)), std::int64_t(std::floor(p.y() / cell_)),
-              std::int64_t(std::floor(p.z() / cell_))};
+    template <class Tr, class CP, class CW>
+    BoxGrid boxes(const Tr& tr, const CP& cp, const CW& cw) {
+      std::vector<Eigen::Vector3d> lo, hi;
+      for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v) {
+        const auto& wp = tr.point(v);
+        balls_.emplace_back(cp(wp), cw(wp));
+        const Point_3& c = balls_.back().center();
+        const double r = std::sqrt(std::max(0.0, balls_.back().squared_radius())) * (1 + 1e-9) + 1e-9;
+        lo.emplace_back(c.x() - r, c.y() - r, c.z() - r);
+        hi.emplace_back(c.x() + r, c.y() + r, c.z() + r);
+      }
+      return BoxGrid(lo, hi, {}, 1.0);
     }
-    static std::uint64_t pack(const std::array<std::int64_t, 3>& c) {
-      // 21 bits per axis: cells as wide as the largest ball over an image of any real size.
-      return (std::uint64_t(c[0] & 0x1FFFFF) << 42) | (std::uint64_t(c[1] & 0x1FFFFF) << 21) | std::uint64_t(c[2] & 0x1FFFFF);
-    }
-    std::uint64_t key(const Point_3& p) const { return pack(cell(p)); }
     std::vector<CGAL::Epick::Sphere_3> balls_;
-    double cell_ = 0.0;
-    std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+    BoxGrid cells_;
   };
-
 
   std::optional<FreeCellGrid> grid_;
   std::vector<Subdomain> regions_;  ///< per grid component

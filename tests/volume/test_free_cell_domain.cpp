@@ -174,8 +174,9 @@ TEST(FreeCellDomain, PatchSeedsAreCgalsOnesOutsideEveryBall) {
     for (auto v = p.vertices_begin(); v != p.vertices_end(); ++v) {
       const bool inside = std::any_of(balls.begin(), balls.end(), [&](const auto& b) { return !b.has_on_unbounded_side(v->point()); });
       held += inside;
-      if (inside)
+      if (inside) {
         for (const auto& s : got) EXPECT_NE(Point(std::get<0>(s), std::get<1>(s), std::get<2>(s)), v->point());
+      }
     }
   EXPECT_GT(held, 200u);
 }
