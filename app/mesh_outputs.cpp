@@ -6,6 +6,7 @@
 #include "core/vtu_io.h"
 #include "pipeline/mesh_job.h"
 #include "pipeline/mesh_report.h"
+#include "pipeline/surface_report.h"
 #include "pipeline/surface_job.h"
 
 #include <fstream>

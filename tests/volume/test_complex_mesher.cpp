@@ -11,6 +11,7 @@
 #include "pipeline/mesh_config.h"
 #include "quality/mesh_quality.h"
 #include "pipeline/mesh_report.h"
+#include "pipeline/surface_report.h"
 #include "pipeline/surface_job.h"
 #include "surface/surface_checks.h"
 #include "volume/surface_pieces.h"

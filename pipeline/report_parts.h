@@ -1,0 +1,35 @@
+// Parts of a run's report that both pipelines write alike (pipeline/mesh_report.h for the direct
+// pipeline, pipeline/surface_report.h for the surface pipeline): the sliver repair's counts,
+// the absorbed islands per tissue, and the tissues outside the volume tolerance, as JSON and as
+// text lines. Volumes in mm^3.
+#pragma once
+
+#include "image/small_islands.h"
+#include "pipeline/mesh_checks.h"
+#include "volume/mesh3_optimisation.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace tissuemesh::report {
+
+/// printf of up to three numbers into a string (at most 159 characters).
+std::string fmt(const char* format, double a, double b = 0, double c = 0);
+
+/// The sliver repair's steps into `j` (boundary slivers, flips, smoothing, offsets, splits,
+/// boundary pinches per tissue, named by `tissues`), and the same as text lines.
+void add_sliver_repair_json(nlohmann::json& j, const SliverRepair& repair, const std::vector<std::string>& tissues);
+std::string sliver_repair_text(const SliverRepair& repair);
+
+/// Islands given to their surroundings: per tissue (named by `names`, tissue id 1 = names[0],
+/// 0 = outside) the components, voxels and volume, and where the voxels went; and the tissues kept
+/// whole although under the threshold.
+nlohmann::json islands_json(const IslandAbsorption& a, const std::vector<std::string>& names);
+std::string islands_text(const IslandAbsorption& a, const std::vector<std::string>& names);
+
+/// Tissues whose meshed volume is outside the tolerance: name, volume, reference, error percent.
+nlohmann::json deviations_json(const std::vector<VolumeDeviation>& deviations);
+
+}  // namespace tissuemesh::report
