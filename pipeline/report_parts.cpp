@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
-namespace tissuemesh::report {
+namespace tissuemesh::report_parts {
 
 std::string fmt(const char* format, double a, double b, double c) {
   char buf[160];
@@ -129,4 +129,4 @@ nlohmann::json deviations_json(const std::vector<VolumeDeviation>& deviations) {
   return out;
 }
 
-}  // namespace tissuemesh::report
+}  // namespace tissuemesh::report_parts

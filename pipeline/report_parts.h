@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace tissuemesh::report {
+namespace tissuemesh::report_parts {
 
 /// printf of up to three numbers into a string (at most 159 characters).
 std::string fmt(const char* format, double a, double b = 0, double c = 0);
@@ -32,4 +32,4 @@ std::string islands_text(const IslandAbsorption& a, const std::vector<std::strin
 /// Tissues whose meshed volume is outside the tolerance: name, volume, reference, error percent.
 nlohmann::json deviations_json(const std::vector<VolumeDeviation>& deviations);
 
-}  // namespace tissuemesh::report
+}  // namespace tissuemesh::report_parts

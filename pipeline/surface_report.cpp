@@ -13,7 +13,7 @@
 
 namespace tissuemesh {
 
-using namespace report;  // the shared parts (pipeline/report_parts.h)
+using namespace report_parts;  // the shared parts (pipeline/report_parts.h)
 
 namespace {
 double voxel_volume_of(const TissueSurfaceCheck& t, const std::map<int, double>& voxel_volume_mm3) {
