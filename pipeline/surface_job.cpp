@@ -16,10 +16,6 @@ namespace tissuemesh {
 
 namespace {
 
-/// Largest extracted surface (triangles) whose distance tree is built during the remeshing (the
-/// phantom's has about 410,000; the 0.25 mm large map's 3 million, some 230 MB more at the peak).
-constexpr std::size_t kOverlappedTreeTriangles = 1000000;
-
 void mesh_volume(SurfaceJobResult& r, const MeshConfig& config, const ThicknessSize* thickness, Progress& progress) {
   if (!r.checks.valid()) return;
   if (r.quality.min_angle_deg < kMinAngleForVolumeDeg) {
@@ -88,14 +84,6 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
     auto stage = progress.stage("projection onto the extracted surface");
     return SurfaceProjection(r.extraction.surface);
   }();
-  // The Hausdorff distance at the end queries the extracted surface's whole-surface tree: on a
-  // surface of up to kOverlappedTreeTriangles it is built on a thread of its own while the
-  // remeshing runs (mostly on one thread), and waited for before that measure (or, on an
-  // exception, by the future's destructor, before on_extracted's). A larger tree would add its
-  // memory to the remeshing's peak: it is built after the remeshing instead.
-  std::future<void> extracted_tree;
-  if (r.extraction.surface.triangles.size() <= kOverlappedTreeTriangles)
-    extracted_tree = std::async(std::launch::async, [&on_extracted] { on_extracted.prepare_distance(); });
   RemeshOptions options;
   options.target_vertices = config.surface.target_vertices;
   options.target_edge_mm = config.surface.target_edge_mm;
@@ -145,8 +133,7 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
   // The Hausdorff distance only measures: it runs on a thread of its own beside the volume stage
   // (one thread but for short parts), which reads the surface as it does and changes nothing of
   // it, and is waited for after it (or, on an exception, by the future's destructor).
-  std::future<SurfaceDistance> hausdorff = std::async(std::launch::async, [&r, &on_extracted, &extracted_tree] {
-    if (extracted_tree.valid()) extracted_tree.get();
+  std::future<SurfaceDistance> hausdorff = std::async(std::launch::async, [&r, &on_extracted] {
     const SurfaceProjection on_remeshed(r.remesh->surface);
     return hausdorff_distance(r.remesh->surface, on_remeshed, r.extraction.surface, on_extracted);
   });

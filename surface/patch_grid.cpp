@@ -54,10 +54,19 @@ PatchGrid::PatchGrid(std::vector<std::array<Vector3d, 3>> triangles, std::vector
 }
 
 PatchGrid::Hit PatchGrid::closest(int patch, const Vector3d& p) const {
+  if (patch < 0 || patch >= static_cast<int>(patch_triangles_.size()) || patch_triangles_[static_cast<std::size_t>(patch)] == 0)
+    return Hit{};
+  return search(patch, p, -1);
+}
+
+PatchGrid::Hit PatchGrid::closest_any(const Vector3d& p, int max_shells) const {
+  if (triangles_.empty()) return Hit{};
+  return search(-1, p, max_shells);
+}
+
+PatchGrid::Hit PatchGrid::search(int patch, const Vector3d& p, int max_shells) const {
   Hit best;
-  if (patch < 0 || patch >= static_cast<int>(patch_triangles_.size()) || patch_triangles_[static_cast<std::size_t>(patch)] == 0 ||
-      !p.allFinite())
-    return best;
+  if (!p.allFinite()) return best;
   double best2 = std::numeric_limits<double>::infinity();
   auto visit = [&](int i, int j, int k) {
     const double cell = grid_.cell();
@@ -68,7 +77,7 @@ PatchGrid::Hit PatchGrid::closest(int patch, const Vector3d& p) const {
     const std::int64_t c = grid_.index(Array3i(i, j, k));
     for (const int* e = grid_.begin(c); e != grid_.end(c); ++e) {
       const int t = *e;
-      if (patch_[static_cast<std::size_t>(t)] != patch ||
+      if ((patch >= 0 && patch_[static_cast<std::size_t>(t)] != patch) ||
           (best.triangle >= 0 && box_distance2(p, lo_[static_cast<std::size_t>(t)], hi_[static_cast<std::size_t>(t)]) >= best2))
         continue;
       const auto& q = triangles_[static_cast<std::size_t>(t)];
@@ -104,6 +113,7 @@ PatchGrid::Hit PatchGrid::closest(int patch, const Vector3d& p) const {
       if (c0[a] + r < dims[a] - 1) bound = std::min(bound, origin[a] + (c0[a] + r + 1) * cell - p[a]);
     }
     if (bound == std::numeric_limits<double>::infinity() || (best.triangle >= 0 && best2 <= bound * bound)) break;
+    if (max_shells >= 0 && r >= max_shells) return Hit{};
   }
   return best;
 }

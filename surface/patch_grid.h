@@ -29,8 +29,16 @@ class PatchGrid {
   /// Closest point of patch `patch` to p; none (triangle -1) for a patch without triangles or a
   /// non-finite p.
   Hit closest(int patch, const Eigen::Vector3d& p) const;
+  /// Closest point of any patch to p; none for a grid without triangles or a non-finite p. With
+  /// `max_shells` >= 0 also none when the search would go past that many shells of cells around
+  /// p's (0: its own cell only) before it knows the closest point: the cells grow with the
+  /// triangles, and far from small triangles a tree of their boxes is faster.
+  Hit closest_any(const Eigen::Vector3d& p, int max_shells = -1) const;
 
  private:
+  /// closest() over the triangles of `patch`, or of every patch for -1, at most `max_shells`
+  /// shells (-1: no bound).
+  Hit search(int patch, const Eigen::Vector3d& p, int max_shells) const;
   std::vector<std::array<Eigen::Vector3d, 3>> triangles_;
   std::vector<int> patch_;
   std::vector<Eigen::Vector3d> lo_, hi_;  ///< per triangle: its box

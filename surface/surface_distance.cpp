@@ -17,9 +17,8 @@ double max_distance(const TriSurface& from, const SurfaceProjection& to) {
   // a surface is 1-Lipschitz, d(p) <= d(v) + |p - v|, so a centroid or midpoint whose bound from
   // its own vertices is under the largest distance found so far cannot raise the maximum and is
   // not queried (most are not). The result is the maximum over all samples.
-  // Queries are independent (the projection's whole-surface tree is built before them,
-  // prepare_distance): two threads; a max is exact, so the result does not depend on the split.
-  to.prepare_distance();
+  // Queries are independent and const: two threads; a max is exact, so the result does not
+  // depend on the split.
   const auto nv = static_cast<std::ptrdiff_t>(from.points.size());
   std::vector<double> dv(from.points.size());
   double d = 0.0;

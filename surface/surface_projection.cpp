@@ -29,6 +29,10 @@ using TriangleTree =
 using SegmentTree =
     CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitive<K, std::vector<Segment>::const_iterator>>>;
 
+/// Shells of patch-grid cells distance() searches before it asks the box tree (a cube of 5^3
+/// cells of twice the mean triangle size).
+constexpr int kGridShells = 2;
+
 Point point(const Eigen::Vector3d& p) { return Point(p.x(), p.y(), p.z()); }
 Eigen::Vector3d vector(const Point& p) { return Eigen::Vector3d(p.x(), p.y(), p.z()); }
 
@@ -56,7 +60,7 @@ struct SurfaceProjection::Trees {
   std::vector<Triangle> all_triangles;
   std::unique_ptr<PatchGrid> patches;
   std::vector<std::unique_ptr<SegmentTree>> curve;
-  std::unique_ptr<TriangleTree> all;  ///< built by the first distance() call
+  std::unique_ptr<TriangleTree> all;  ///< built by the first distance() query far from the surface
   std::once_flag all_built;
 };
 
@@ -77,9 +81,7 @@ SurfaceProjection::SurfaceProjection(const TriSurface& reference)
       t.curve_segments[c].emplace_back(point(reference.points[line[i]]), point(reference.points[line[i + 1]]));
   }
   // The patch grid and the curve trees share nothing: built on two threads (each is the same
-  // whichever thread builds it). CGAL builds a tree's box hierarchy at its first query; the whole
-  // surface's tree, only for distance() (a measurement after the remeshing, not part of it), is
-  // built at the first call of distance().
+  // whichever thread builds it).
   run_at_once([&] { t.patches = std::make_unique<PatchGrid>(std::move(corners), patches_.patch_of_triangle); },
               [&] {
                 for (const std::vector<Segment>& segments : t.curve_segments) {
@@ -109,17 +111,20 @@ Eigen::Vector3d SurfaceProjection::onto_curve(int curve, const Eigen::Vector3d& 
   return vector(trees_->curve.at(curve)->closest_point(point(p)));
 }
 
-void SurfaceProjection::prepare_distance() const {
+double SurfaceProjection::distance(const Eigen::Vector3d& p) const {
+  if (!p.allFinite()) throw std::invalid_argument("SurfaceProjection::distance: a non-finite query point");
+  if (trees_->all_triangles.empty()) throw std::invalid_argument("SurfaceProjection::distance: the surface has no triangles");
+  // Near the surface (the Hausdorff samples, most points a size field asks about) the patch grid
+  // finds the closest point in a few cells; far from it, where the grid would search cubes of
+  // cells growing with the distance, the whole surface's box tree (a logarithmic search).
   Trees& t = *trees_;
+  const PatchGrid::Hit hit = t.patches->closest_any(p, kGridShells);
+  if (hit.triangle >= 0) return (hit.point - p).norm();
   std::call_once(t.all_built, [&t] {
     t.all = std::make_unique<TriangleTree>(t.all_triangles.begin(), t.all_triangles.end());
     t.all->accelerate_distance_queries();
   });
-}
-
-double SurfaceProjection::distance(const Eigen::Vector3d& p) const {
-  prepare_distance();
-  return std::sqrt(trees_->all->squared_distance(point(p)));
+  return std::sqrt(t.all->squared_distance(point(p)));
 }
 
 }  // namespace tissuemesh

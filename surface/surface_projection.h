@@ -6,10 +6,10 @@
 // return the closest point on that patch's triangles (a grid of triangle boxes, surface/patch_grid.h)
 // or that curve's segments (CGAL AABB trees), in double precision, so a projected point lies on
 // the reference surface up to round-off and a projected curve point on the reference junction.
-// distance() uses a CGAL AABB tree of the whole surface, built at its first call. Build once;
-// queries are const and may run from several threads (the whole-surface tree is built once under
-// std::call_once; CGAL builds a tree's box hierarchy lazily, under its own mutex, on its first
-// query).
+// distance() searches the same grid over every patch near the surface and a CGAL AABB tree of
+// the whole surface farther away (built once, under std::call_once, at the first such query).
+// Build once; queries are const and may run from several threads (CGAL builds a tree's box
+// hierarchy lazily, under its own mutex, on its first query).
 #pragma once
 
 #include "core/tri_surface.h"
@@ -44,12 +44,9 @@ class SurfaceProjection {
   /// whether the point landed on the far side of a thin sheet of tissue (both sides one patch).
   Eigen::Vector3d onto_patch(int patch, const Eigen::Vector3d& p, Eigen::Vector3d* normal = nullptr) const;
   Eigen::Vector3d onto_curve(int curve, const Eigen::Vector3d& p) const;
-  /// Distance (mm) from p to the closest point of the whole reference surface.
+  /// Distance (mm) from p to the closest point of the whole reference surface; std::invalid_argument
+  /// for a non-finite p or a surface without triangles.
   double distance(const Eigen::Vector3d& p) const;
-  /// Builds the whole-surface tree distance() queries (its first call does it otherwise). Call it
-  /// before querying distance() from several threads: a failure to build is then thrown here, on
-  /// the caller's thread, not inside their parallel region.
-  void prepare_distance() const;
 
  private:
   struct Trees;

@@ -141,7 +141,6 @@ ComplexMeshResult mesh_complex(const TriSurface& surface, const std::function<do
   std::function<double(const Eigen::Vector3d&)> cell_size_mm = size_mm;
   if (params.cell_growth > 0.0 || params.max_cell_edge_mm > 0.0) {
     projection.emplace(surface);
-    projection->prepare_distance();
     const SurfaceProjection* near = &*projection;
     const double growth = params.cell_growth, cap = params.max_cell_edge_mm;
     cell_size_mm = [&size_mm, near, growth, cap](const Eigen::Vector3d& x) {

@@ -1,6 +1,7 @@
-// PatchGrid (surface/patch_grid.h): its closest point on a patch is the one a search over every
-// triangle of that patch finds, for points on, near and far from an extracted multi-material
-// surface, on all of its patches.
+// PatchGrid (surface/patch_grid.h): its closest point on a patch (and on any patch) is the one a
+// search over every triangle of that patch (of the surface) finds, for points on, near and far
+// from an extracted multi-material surface, on all of its patches; and SurfaceProjection::distance,
+// which asks the grid near the surface and a box tree farther away, is that nearest distance.
 #include "surface/patch_grid.h"
 #include "surface/surface_projection.h"
 #include "surface/triangle_geometry.h"
@@ -27,7 +28,8 @@ TEST(PatchGrid, ClosestPointIsTheNearestOfAllThePatchTriangles) {
 
   std::mt19937 rng(5);
   std::uniform_int_distribution<std::size_t> vertex(0, s.points.size() - 1);
-  int queries = 0, far_queries = 0;
+  const SurfaceProjection projection(s);
+  int queries = 0, far_queries = 0, beyond_one_shell = 0;
   for (double spread : {0.0, 0.3, 1.0, 3.0, 12.0}) {  // mm around surface vertices
     std::uniform_real_distribution<double> offset(-spread, spread);
     for (int k = 0; k < 60; ++k) {
@@ -47,9 +49,25 @@ TEST(PatchGrid, ClosestPointIsTheNearestOfAllThePatchTriangles) {
         ++queries;
         far_queries += brute > 25.0;  // beyond 5 mm: several shells of cells searched
       }
+      // Over every patch: the nearest of all triangles, which SurfaceProjection::distance returns.
+      double brute = std::numeric_limits<double>::infinity();
+      for (const auto& q : tris) brute = std::min(brute, (p - closest_point_on_triangle(p, q[0], q[1], q[2])).squaredNorm());
+      const PatchGrid::Hit any = grid.closest_any(p);
+      ASSERT_GE(any.triangle, 0);
+      EXPECT_EQ((p - any.point).squaredNorm(), brute) << "spread " << spread << ", any patch";
+      // Within one shell of cells around p's: the same point, or none when it lies farther.
+      const PatchGrid::Hit near = grid.closest_any(p, 1);
+      if (near.triangle >= 0)
+        EXPECT_EQ((p - near.point).squaredNorm(), brute) << "spread " << spread << ", one shell";
+      else
+        ++beyond_one_shell;
+      // SurfaceProjection::distance: the grid near the surface, a box tree far from it.
+      EXPECT_NEAR(projection.distance(p), std::sqrt(brute), kRelativeRoundoff * (1.0 + std::sqrt(brute)));
     }
   }
   EXPECT_GT(far_queries, queries / 10);
+  EXPECT_GT(beyond_one_shell, 0);  // both of distance()'s searches were tried
+  EXPECT_LT(beyond_one_shell, 300);
 }
 
 TEST(PatchGrid, APatchWithoutTrianglesHasNoClosestPoint) {
@@ -78,5 +96,8 @@ TEST(PatchGrid, RefusesAPatchListOfTheWrongSizeAndFindsNothingForANonFinitePoint
   EXPECT_THROW(PatchGrid(tris, {-1}), std::invalid_argument);
   const PatchGrid grid(tris, {0});
   EXPECT_EQ(grid.closest(0, Eigen::Vector3d(NAN, 0, 0)).triangle, -1);
+  EXPECT_EQ(grid.closest_any(Eigen::Vector3d(0, NAN, 0)).triangle, -1);
   EXPECT_EQ(grid.closest(0, Eigen::Vector3d(1e300, -1e300, 0)).triangle, 0);  // far away, still found
+  EXPECT_EQ(grid.closest_any(Eigen::Vector3d(-1e300, 0, 1e300)).triangle, 0);
+  EXPECT_EQ(PatchGrid({}, {}).closest_any(Eigen::Vector3d(0, 0, 0)).triangle, -1);
 }
