@@ -130,12 +130,12 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
     r.quality = surface_quality(r.remesh->surface);
     if (r.approach) r.grading = measure_grading(r.remesh->surface, *r.approach);
   }
-  // The Hausdorff distance only measures: it runs on a thread of its own beside the volume stage
+  // The Hausdorff distance only measures: it runs on one thread of its own beside the volume stage
   // (one thread but for short parts), which reads the surface as it does and changes nothing of
   // it, and is waited for after it (or, on an exception, by the future's destructor).
   std::future<SurfaceDistance> hausdorff = std::async(std::launch::async, [&r, &on_extracted] {
     const SurfaceProjection on_remeshed(r.remesh->surface);
-    return hausdorff_distance(r.remesh->surface, on_remeshed, r.extraction.surface, on_extracted);
+    return hausdorff_distance(r.remesh->surface, on_remeshed, r.extraction.surface, on_extracted, 1);
   });
   mesh_volume(r, config, thickness ? &*thickness : nullptr, progress);
   {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace tissuemesh {
@@ -12,17 +13,17 @@ namespace {
 /// coordinates of ~100 mm), far below any distance reported (printed to 1e-3 mm).
 constexpr double kSkipMarginMm = 1e-9;
 
-double max_distance(const TriSurface& from, const SurfaceProjection& to) {
+double max_distance(const TriSurface& from, const SurfaceProjection& to, int threads) {
   // The samples: vertices, triangle centroids and edge midpoints (each edge once). The distance to
   // a surface is 1-Lipschitz, d(p) <= d(v) + |p - v|, so a centroid or midpoint whose bound from
   // its own vertices is under the largest distance found so far cannot raise the maximum and is
   // not queried (most are not). The result is the maximum over all samples.
-  // Queries are independent and const: two threads; a max is exact, so the result does not
+  // Queries are independent and const: `threads` threads; a max is exact, so the result does not
   // depend on the split.
   const auto nv = static_cast<std::ptrdiff_t>(from.points.size());
   std::vector<double> dv(from.points.size());
   double d = 0.0;
-#pragma omp parallel for schedule(static) num_threads(2) reduction(max : d)
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(max : d)
   for (std::ptrdiff_t i = 0; i < nv; ++i) {
     dv[static_cast<std::size_t>(i)] = to.distance(from.points[static_cast<std::size_t>(i)]);
     d = std::max(d, dv[static_cast<std::size_t>(i)]);
@@ -43,7 +44,7 @@ double max_distance(const TriSurface& from, const SurfaceProjection& to) {
   const auto nt = static_cast<std::ptrdiff_t>(from.triangles.size());
   const auto ne = static_cast<std::ptrdiff_t>(edges.size());
   const double vertex_max = d;
-#pragma omp parallel num_threads(2) reduction(max : d)
+#pragma omp parallel num_threads(threads) reduction(max : d)
   {
     double best = vertex_max;
 #pragma omp for schedule(static) nowait
@@ -64,10 +65,11 @@ double max_distance(const TriSurface& from, const SurfaceProjection& to) {
 }  // namespace
 
 SurfaceDistance hausdorff_distance(const TriSurface& a, const SurfaceProjection& a_on, const TriSurface& b,
-                                   const SurfaceProjection& b_on) {
+                                   const SurfaceProjection& b_on, int threads) {
+  if (threads != 1 && threads != 2) throw std::invalid_argument("hausdorff_distance: threads must be 1 or 2");
   SurfaceDistance d;
-  d.a_to_b_mm = max_distance(a, b_on);
-  d.b_to_a_mm = max_distance(b, a_on);
+  d.a_to_b_mm = max_distance(a, b_on, threads);
+  d.b_to_a_mm = max_distance(b, a_on, threads);
   return d;
 }
 

@@ -16,7 +16,9 @@ struct SurfaceDistance {
 /// surface against the other's triangles (exact closest points). `a_on`/`b_on` are projections
 /// built on `a`/`b`. Sampling bounds the true value from below; with these samples the gap is at
 /// most the deviation of a triangle's interior between samples, well under its edge length.
+/// `threads` (1 or 2, else std::invalid_argument) share the queries; the result does not depend
+/// on it (1 beside other work on a two-core machine).
 SurfaceDistance hausdorff_distance(const TriSurface& a, const SurfaceProjection& a_on, const TriSurface& b,
-                                   const SurfaceProjection& b_on);
+                                   const SurfaceProjection& b_on, int threads = 2);
 
 }  // namespace tissuemesh

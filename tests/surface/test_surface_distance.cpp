@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 using namespace tissuemesh;
 using namespace tissuemesh::test;
@@ -72,6 +73,11 @@ TEST(SurfaceDistance, EqualsTheMaximumOverEverySample) {
   EXPECT_EQ(d.a_to_b_mm, all_samples_max(remeshed_surface, on_input));
   EXPECT_EQ(d.b_to_a_mm, all_samples_max(input, on_remeshed));
   EXPECT_GT(d.b_to_a_mm, 0.0);
+  // On one thread: the same maxima (each thread skips by its own running maximum).
+  const SurfaceDistance one = hausdorff_distance(remeshed_surface, on_remeshed, input, on_input, 1);
+  EXPECT_EQ(one.a_to_b_mm, d.a_to_b_mm);
+  EXPECT_EQ(one.b_to_a_mm, d.b_to_a_mm);
+  EXPECT_THROW(hausdorff_distance(remeshed_surface, on_remeshed, input, on_input, 3), std::invalid_argument);
   // The remeshed surface's farthest sample is not a vertex (its vertices lie on the input), so
   // the result depends on the samples the bound may skip.
   EXPECT_GT(d.a_to_b_mm, vertices_max(remeshed_surface, on_input));
