@@ -103,8 +103,11 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
   for (const auto& t : s.triangles)
     for (int e = 0; e < 3; ++e) neighbours[t[e]].push_back(t[(e + 1) % 3]), neighbours[t[(e + 1) % 3]].push_back(t[e]);
   // A vertex moves by at most kMaxMoveOfEdge of its shortest edge a round: where few vertices of a
-  // patch may move (a small island, most of it bent), the solved offset is large, and those
-  // vertices would make spikes; they are held instead, and the offsets solved again.
+  // patch may move (a small island, a thin tube most of whose vertices are bent), the solved
+  // offset is large, and those vertices would make spikes. Their move is clipped there, and the
+  // next round, which measures the volumes again, goes on from where they got. (Holding them and
+  // solving again instead raised the offset of the rest, which were held in turn: on a map of
+  // thin vessels every vessel vertex ended up held.)
   std::vector<double> max_move(s.points.size(), 0.0);
   for (std::size_t v = 0; v < s.points.size(); ++v) {
     double shortest = std::numeric_limits<double>::infinity();
@@ -239,7 +242,7 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
       largest = 0.0;
       for (std::size_t v = 0; v < s.points.size(); ++v) {
         if (weight[v] == 0.0 || normal[v].squaredNorm() == 0.0) continue;
-        const double move = scale * weight[v] * d[vertex_patch[v]];
+        const double move = std::clamp(scale * weight[v] * d[vertex_patch[v]], -max_move[v], max_move[v]);
         s.points[v] += move * normal[v].normalized();
         largest = std::max(largest, std::abs(move));
       }
@@ -268,17 +271,6 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
     std::vector<int> bad;
     bool ok = false;
     Eigen::VectorXd d = solve();
-    // Vertices whose move would exceed their cap are held too, and the offsets solved again.
-    for (int capping = 0; capping < kFreezings; ++capping) {
-      bool over = false;
-      for (std::size_t v = 0; v < s.points.size(); ++v)
-        if (weight[v] > 0.0 && std::abs(weight[v] * d[vertex_patch[v]]) > max_move[v]) {
-          hold(static_cast<int>(v));
-          over = true;
-        }
-      if (!over) break;
-      d = solve();
-    }
     for (int freezing = 0; !ok; ++freezing) {
       ok = attempt(d, 1.0, bad);
       if (ok || freezing == kFreezings || (bad.empty() && bad_vertices.empty())) break;
