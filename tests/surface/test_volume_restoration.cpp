@@ -19,6 +19,30 @@
 using namespace tissuemesh;
 using namespace tissuemesh::test;
 
+namespace {
+
+// `image` (regions 1..`regions`) remeshed to `vertices` must leave tissue 1 under `lost_below`
+// of its extracted volume (or the test means nothing); restored, every tissue is within 1e-3 of
+// its extracted volume, the surface valid, its smallest angle not lowered. `what` names tissue 1.
+void expect_restored_from_a_coarse_remesh(const LabelImage& image, int regions, int vertices, double lost_below,
+                                          const char* what) {
+  const std::map<int, double> reference = enclosed_volumes(extract(image, regions).surface);
+  TriSurface s = remeshed(image, regions, vertices).surface;
+  ASSERT_TRUE(check_surface(s).valid());
+  const std::map<int, double> before = enclosed_volumes(s);
+  ASSERT_LT(before.at(1) / reference.at(1), lost_below) << "the coarse " << what << " must lose volume for the test to mean something";
+  const double min_angle = surface_quality(s).min_angle_deg;
+  const VolumeRestoration r = restore_volumes(s, reference);
+  std::cout << "[ surface  ] " << what << " " << before.at(1) / reference.at(1) - 1.0 << " -> "
+            << r.volume_after_mm3.at(1) / reference.at(1) - 1.0 << " in " << r.rounds << " rounds, "
+            << r.frozen_vertices << " held, largest move " << r.max_offset_mm << " mm\n";
+  for (const auto& [id, v] : reference) EXPECT_NEAR(r.volume_after_mm3.at(id) / v, 1.0, 1e-3) << "tissue " << id;
+  EXPECT_TRUE(check_surface(s).valid());
+  EXPECT_GE(surface_quality(s).min_angle_deg, min_angle);
+}
+
+}  // namespace
+
 TEST(VolumeRestoration, RemeshedComplexesGetTheirVolumesBack) {
   for (const auto& [image, tissues, budget] :
        {std::tuple{nested_spheres(), 2, 150}, std::tuple{three_boxes(), 3, 200}}) {
@@ -90,20 +114,7 @@ TEST(VolumeRestoration, ACoarseClosedIslandIsInflatedBack) {
     const int di = i - 12, dj = j - 12, dk = k - 12;
     return di * di + dj * dj + dk * dk <= 4 ? 1 : 2;
   });
-  const std::map<int, double> reference = enclosed_volumes(extract(image, 2).surface);
-  TriSurface s = remeshed(image, 2, 120).surface;
-  ASSERT_TRUE(check_surface(s).valid());
-  const std::map<int, double> before = enclosed_volumes(s);
-  ASSERT_LT(before.at(1) / reference.at(1), 0.8) << "the coarse ball must lose volume for the test to mean something";
-  const double min_angle = surface_quality(s).min_angle_deg;
-
-  const VolumeRestoration r = restore_volumes(s, reference);
-  std::cout << "[ surface  ] ball " << before.at(1) / reference.at(1) - 1.0 << " -> "
-            << r.volume_after_mm3.at(1) / reference.at(1) - 1.0 << " in " << r.rounds << " rounds, largest move "
-            << r.max_offset_mm << " mm\n";
-  for (const auto& [id, v] : reference) EXPECT_NEAR(r.volume_after_mm3.at(id) / v, 1.0, 1e-3) << "tissue " << id;
-  EXPECT_TRUE(check_surface(s).valid());
-  EXPECT_GE(surface_quality(s).min_angle_deg, min_angle);
+  expect_restored_from_a_coarse_remesh(image, 2, 120, 0.8, "ball");
 }
 
 // A vessel: a tube four voxels across in a block of tissue 2, running into tissue 3 (so its patch
@@ -118,19 +129,7 @@ TEST(VolumeRestoration, ACoarseTubeAtAJunctionIsInflatedBack) {
     if (i >= 6 && dj * dj + dk * dk <= 4.0) return 1;
     return i >= 44 ? 3 : 2;
   });
-  const std::map<int, double> reference = enclosed_volumes(extract(image, 3).surface);
-  TriSurface s = remeshed(image, 3, 400).surface;
-  ASSERT_TRUE(check_surface(s).valid());
-  const std::map<int, double> before = enclosed_volumes(s);
-  const double min_angle = surface_quality(s).min_angle_deg;
-  const VolumeRestoration r = restore_volumes(s, reference);
-  std::cout << "[ surface  ] tube " << before.at(1) / reference.at(1) - 1.0 << " -> "
-            << r.volume_after_mm3.at(1) / reference.at(1) - 1.0 << " in " << r.rounds << " rounds, "
-            << r.frozen_vertices << " held, largest move " << r.max_offset_mm << " mm\n";
-  ASSERT_LT(before.at(1) / reference.at(1), 0.97) << "the coarse tube must lose volume for the test to mean something";
-  for (const auto& [id, v] : reference) EXPECT_NEAR(r.volume_after_mm3.at(id) / v, 1.0, 1e-3) << "tissue " << id;
-  EXPECT_TRUE(check_surface(s).valid());
-  EXPECT_GE(surface_quality(s).min_angle_deg, min_angle);
+  expect_restored_from_a_coarse_remesh(image, 3, 400, 0.97, "tube");
 }
 
 // Vessels thinner than the remeshed edges: three tubes three voxels across in tissue 2, running
@@ -147,17 +146,5 @@ TEST(VolumeRestoration, ThinTubesWhoseMovesAreClippedAreInflatedBackOverRounds) 
     }
     return i >= 44 ? 3 : 2;
   });
-  const std::map<int, double> reference = enclosed_volumes(extract(image, 3).surface);
-  TriSurface s = remeshed(image, 3, 1200).surface;
-  ASSERT_TRUE(check_surface(s).valid());
-  const std::map<int, double> before = enclosed_volumes(s);
-  ASSERT_LT(before.at(1) / reference.at(1), 0.7) << "the coarse tubes must lose volume for the test to mean something";
-  const double min_angle = surface_quality(s).min_angle_deg;
-  const VolumeRestoration r = restore_volumes(s, reference);
-  std::cout << "[ surface  ] tubes " << before.at(1) / reference.at(1) - 1.0 << " -> "
-            << r.volume_after_mm3.at(1) / reference.at(1) - 1.0 << " in " << r.rounds << " rounds, "
-            << r.frozen_vertices << " held, largest move " << r.max_offset_mm << " mm\n";
-  for (const auto& [id, v] : reference) EXPECT_NEAR(r.volume_after_mm3.at(id) / v, 1.0, 1e-3) << "tissue " << id;
-  EXPECT_TRUE(check_surface(s).valid());
-  EXPECT_GE(surface_quality(s).min_angle_deg, min_angle);
+  expect_restored_from_a_coarse_remesh(image, 3, 1200, 0.7, "tubes");
 }
