@@ -1,5 +1,7 @@
 #include "surface/surface_distance.h"
 
+#include "surface/run_at_once.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -18,16 +20,19 @@ double max_distance(const TriSurface& from, const SurfaceProjection& to, int thr
   // a surface is 1-Lipschitz, d(p) <= d(v) + |p - v|, so a centroid or midpoint whose bound from
   // its own vertices is under the largest distance found so far cannot raise the maximum and is
   // not queried (most are not). The result is the maximum over all samples.
-  // Queries are independent and const: `threads` threads; a max is exact, so the result does not
-  // depend on the split.
-  const auto nv = static_cast<std::ptrdiff_t>(from.points.size());
+  // Queries are independent and const: the two halves of each sample list run at once (on
+  // `threads` threads, surface/run_at_once.h, which hands an exception back to the caller), each
+  // half skipping by its own running maximum; a max is exact, so the result does not depend on the
+  // split.
+  // [begin, end) of half h (0, 1) of a list of n.
+  auto half = [](int h, std::size_t n) { return std::array<std::size_t, 2>{h == 0 ? 0 : n / 2, h == 0 ? n / 2 : n}; };
+  auto in_halves = [threads](auto&& part) { run_at_once([&] { part(0); }, [&] { part(1); }, threads); };
   std::vector<double> dv(from.points.size());
-  double d = 0.0;
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(max : d)
-  for (std::ptrdiff_t i = 0; i < nv; ++i) {
-    dv[static_cast<std::size_t>(i)] = to.distance(from.points[static_cast<std::size_t>(i)]);
-    d = std::max(d, dv[static_cast<std::size_t>(i)]);
-  }
+  double vertex_max[2] = {0.0, 0.0};
+  in_halves([&](int h) {
+    const auto [begin, end] = half(h, from.points.size());
+    for (std::size_t i = begin; i < end; ++i) vertex_max[h] = std::max(vertex_max[h], dv[i] = to.distance(from.points[i]));
+  });
   std::vector<std::array<int, 2>> edges;
   edges.reserve(3 * from.triangles.size());
   for (const std::array<int, 3>& t : from.triangles)
@@ -41,25 +46,20 @@ double max_distance(const TriSurface& from, const SurfaceProjection& to, int thr
       bound = std::min(bound, dv[static_cast<std::size_t>(ends[k])] + (p - from.points[static_cast<std::size_t>(ends[k])]).norm());
     if (bound > best - kSkipMarginMm) best = std::max(best, to.distance(p));
   };
-  const auto nt = static_cast<std::ptrdiff_t>(from.triangles.size());
-  const auto ne = static_cast<std::ptrdiff_t>(edges.size());
-  const double vertex_max = d;
-#pragma omp parallel num_threads(threads) reduction(max : d)
-  {
-    double best = vertex_max;
-#pragma omp for schedule(static) nowait
-    for (std::ptrdiff_t i = 0; i < nt; ++i) {
-      const std::array<int, 3>& t = from.triangles[static_cast<std::size_t>(i)];
-      sample((from.points[t[0]] + from.points[t[1]] + from.points[t[2]]) / 3.0, t.data(), 3, best);
+  // Each half: its half of the triangle centroids, then of the edge midpoints.
+  const double d = std::max(vertex_max[0], vertex_max[1]);
+  double best[2] = {d, d};
+  in_halves([&](int h) {
+    const auto [t_begin, t_end] = half(h, from.triangles.size());
+    for (std::size_t i = t_begin; i < t_end; ++i) {
+      const std::array<int, 3>& t = from.triangles[i];
+      sample((from.points[t[0]] + from.points[t[1]] + from.points[t[2]]) / 3.0, t.data(), 3, best[h]);
     }
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t i = 0; i < ne; ++i) {
-      const std::array<int, 2>& e = edges[static_cast<std::size_t>(i)];
-      sample(0.5 * (from.points[e[0]] + from.points[e[1]]), e.data(), 2, best);
-    }
-    d = std::max(d, best);
-  }
-  return d;
+    const auto [e_begin, e_end] = half(h, edges.size());
+    for (std::size_t i = e_begin; i < e_end; ++i)
+      sample(0.5 * (from.points[edges[i][0]] + from.points[edges[i][1]]), edges[i].data(), 2, best[h]);
+  });
+  return std::max(best[0], best[1]);
 }
 
 }  // namespace
