@@ -24,9 +24,10 @@
 // few tight spots then no longer hold every patch back. A round still failing is retried at half
 // its offsets, three times, then undone, and the rounds stop; so is a round that does not lower
 // the sum of the tissues' relative errors or raises one of them by more than 0.1 % (plus 5 % of
-// that sum). A vertex that would move further than its shortest edge in a round is held as well
-// (no spikes where few vertices of a patch may move). The surface stays valid and keeps its
-// Table 1 minimum angle. Units mm, mm^3. Deterministic.
+// that sum). A vertex's move in a round is clipped at its shortest edge (no spikes where few
+// vertices of a patch may move); the next round measures the volumes again and goes on from
+// there. The surface stays valid and keeps its Table 1 minimum angle. Units mm, mm^3.
+// Deterministic.
 #pragma once
 
 #include "core/tri_surface.h"
