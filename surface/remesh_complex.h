@@ -24,9 +24,10 @@
 // candidates from a grid of triangle boxes, surface/triangle_grid.h), so an intersection-free input
 // stays intersection free at any budget. Shape: each vertex carries the input vertices collapsed
 // into it, and a collapse or relaxation move is refused when one of them would end up farther than
-// the approximation bound (max(max_deviation_mm, L/4)) from the triangles around it (an angle- or
-// quality-smoothing move may instead hand it to a neighbour whose triangles are within the bound),
-// or when a changed triangle would leave its patch by more than that bound or face away from it;
+// the approximation bound (max(max_deviation_mm, L/4), times scale_deviation()'s factor) from
+// the triangles around it (an angle- or quality-smoothing move may instead hand it to a
+// neighbour whose triangles are within the bound), or when a changed triangle would leave its
+// patch by more than that bound or face away from it;
 // split midpoints and relaxed points that would project onto the far side of a thin sheet are
 // refused too. Size near stuck edges: after grade_stuck_edges(), h(x) = min(L s(x), cap(x)) with
 // the GradedSizeCap (surface/graded_size_cap.h) of the edges between two junction vertices that
@@ -159,6 +160,8 @@ class RemeshComplex {
   /// as it is. unfocus() lifts the limit.
   void focus_on_poor_triangles(double min_angle_rad, double radius);
   void unfocus() { focus_.clear(); }
+  /// Multiplies the approximation bound (deviation(), > 0) from now on; 1 restores it.
+  void scale_deviation(double factor) { deviation_scale_ = factor; }
 
   /// Collapses the relatively shortest or splits the relatively longest edges until the vertex
   /// count is `target`; false when it cannot get there (every candidate refused, even with the
@@ -339,6 +342,7 @@ class RemeshComplex {
   GradedSizeCap cap_;
   double max_deviation_ = 0.0;
   double slack_ = 1.0;  ///< deviation() multiplier, raised by match_count when stuck
+  double deviation_scale_ = 1.0;  ///< deviation() multiplier set by scale_deviation()
   std::vector<Vector3d> reference_;             ///< the input vertices
   std::vector<std::vector<int>> represents_;    ///< per vertex: input vertices collapsed into it
   TriangleGrid grid_;

@@ -8,15 +8,17 @@
 // measured count and a final pass makes the vertex count exactly the budget. Then a polish (flips,
 // relaxation, angle-improving smoothing, removal and splits around triangles with an angle under
 // 30 degrees), an optional repair around the triangles still under 30 degrees (kept only when
-// improves_table1_minima, surface/surface_quality.h), and a last quality-raising smoothing when
-// Q_min is under kQualitySmoothingBelow (it never lowers the smallest angle below min(its value,
-// 30 degrees) nor adds angles under 30 degrees). Near junction edges that stay far shorter than h,
-// h is capped (surface/graded_size_cap.h). An absolute bound from the local thickness
+// improves_table1_minima, surface/surface_quality.h; while the smallest angle is under 26.5
+// degrees, repeated on what a kept one left, at most RemeshOptions::repair_attempts attempts,
+// each with the approximation bound 1.5 times looser near those triangles), and a last
+// quality-raising smoothing when Q_min is under kQualitySmoothingBelow (it never lowers the
+// smallest angle below min(its value, 30 degrees) nor adds angles under 30 degrees). Near
+// junction edges that stay far shorter than h, h is capped (surface/graded_size_cap.h). An absolute bound from the local thickness
 // (RemeshOptions::max_edge_mm) keeps thin sheets and tubes at edges that fit them; when those would
 // take more than half the budget, all of them are scaled up by one factor (reported), or dropped
 // when that factor would exceed 2.5 (they no longer fit the parts they are for). Progress:
-// a note per round (vertices, L in mm), after the polish, after a repair and after the quality
-// smoothing.
+// a note per round (vertices, L in mm), after the polish, after each repair attempt and after the
+// quality smoothing.
 // Validity: no operation makes two triangles intersect (an exact guard), so a valid input gives an
 // intersection-free result at any budget; the result is checked again (surface/surface_checks.h)
 // and the checks returned, the caller decides. Deterministic; the same result on one thread as on
@@ -56,6 +58,9 @@ struct RemeshOptions {
   /// Try the repair of triangles left under 30 degrees (header comment); false returns the
   /// polished result as is (what a discarded repair returns too).
   bool repair = true;
+  /// Repair attempts at most (>= 1; header comment): the first with the approximation bound as
+  /// it is, each later one 1.5 times looser near the poor triangles.
+  int repair_attempts = 4;
   /// Threads of the partitioned sweeps (surface/remesh_complex.h): 2, or 1 to run the two halves
   /// one after the other. The result is the same either way.
   int threads = 2;
