@@ -108,7 +108,7 @@ TEST(Cli, PhantomKindsAndNoBackground) {
   EXPECT_NE(bad.err.find("--spacing"), std::string::npos) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "g.nii.gz"));
   for (const char* config : {"hard-breast.yaml", "hard-breast-no-background.yaml", "hard-breast-no-background-surface.yaml",
-                             "folded-layers.yaml"}) {
+                             "folded-layers.yaml", "folded-layers-surface.yaml"}) {
     const auto p = run_cli("mesh x.nii -c '" + test::config_path(config) + "' --print-config", dir);
     EXPECT_EQ(p.exit_code, 0) << config << ": " << p.err;
     EXPECT_NE(p.out.find("kind: "), std::string::npos) << config;
