@@ -114,7 +114,8 @@ RemeshComplex::RemeshComplex(const TriSurface& in, const SurfaceProjection& proj
 }
 
 double RemeshComplex::deviation() const {
-  return max_deviation_ > 0.0 ? std::max(max_deviation_, kDeviationPerEdge * L) * slack_ * deviation_scale_ : 0.0;
+  if (!(max_deviation_ > 0.0)) return 0.0;
+  return std::max(max_deviation_, kDeviationPerEdge * L) * slack_ * deviation_scale_;
 }
 
 std::size_t RemeshComplex::corners() const {

@@ -162,10 +162,13 @@ class RemeshComplex {
   void unfocus() { focus_.clear(); }
   /// Multiplies the approximation bound (deviation(), > 0) from now on; 1 restores it.
   void scale_deviation(double factor) { deviation_scale_ = factor; }
+  /// The step by which the approximation bound is loosened where it holds vertices in place: per
+  /// stuck round of match_count, and per repair attempt (surface/surface_remesh.cpp).
+  static constexpr double kDeviationLoosening = 1.5;
 
   /// Collapses the relatively shortest or splits the relatively longest edges until the vertex
   /// count is `target`; false when it cannot get there (every candidate refused, even with the
-  /// approximation bound loosened by 1.5x per stuck round).
+  /// approximation bound loosened by kDeviationLoosening per stuck round).
   bool match_count(std::size_t target);
 
   /// The live mesh, compacted, with its junction polylines chained again (labels and tissue names

@@ -416,7 +416,7 @@ bool RemeshComplex::match_count(std::size_t target) {
       if (touched[a] || touched[b] || !edge_exists(a, b)) continue;
       if (remove ? collapse_either(a, b, 2.0 * kSplitAbove) : split(a, b)) touched[a] = touched[b] = 1;
     }
-    if (alive_vertices_ == before) slack_ *= 1.5;  // every candidate refused: loosen the bound
+    if (alive_vertices_ == before) slack_ *= kDeviationLoosening;  // every candidate refused: loosen the bound
   }
   slack_ = 1.0;
   return alive_vertices_ == target;

@@ -42,16 +42,15 @@ constexpr double kStuckBelow = 0.5;
 constexpr int kRepairRounds = 2;
 /// Repair attempts (RemeshOptions::repair_attempts, default 4) run each from the complex the last
 /// kept one left, while triangles under 30 degrees remain and each attempt improves the Table 1
-/// minima; attempt k (from 0) runs with the approximation bound times kRepairLoosening^k (the
-/// factor RemeshComplex::match_count loosens it by when stuck), within kRepairReach L of the poor
-/// triangles only. Where the input folds at a period near the edge length (cortex-like layers),
-/// vertices held within L/4 of every fold cannot make the triangles there wide; a looser bound
-/// lets them cut across a fold the edges cannot resolve anyway. 1.5^3 = 3.4: the fourth attempt
-/// allows 0.84 L there. Four by default: a fifth and sixth attempt on the folded-layers phantom
-/// found nothing better. The looser attempts give up closeness to the input for angles, so they
-/// run only while the smallest angle is under kLoosenBelowDeg, the smallest angle of the seed
-/// paper's Table 1 at 21K vertices (Alqaoud et al.): a surface above it keeps the standard bound.
-constexpr double kRepairLoosening = 1.5;
+/// minima; attempt k (from 0) runs with the approximation bound times
+/// RemeshComplex::kDeviationLoosening^k (1.5^k), within kRepairReach L of the poor triangles only.
+/// Where the input folds at a period near the edge length (cortex-like layers), vertices held
+/// within L/4 of every fold cannot make the triangles there wide; a looser bound lets them cut
+/// across a fold the edges cannot resolve anyway. 1.5^3 = 3.4: the fourth attempt allows 0.84 L
+/// there. Four by default: a fifth and sixth attempt on the folded-layers phantom found nothing
+/// better. The looser attempts give up closeness to the input for angles, so they run only while
+/// the smallest angle is under kLoosenBelowDeg, the smallest angle of the seed paper's Table 1 at
+/// 21K vertices (Alqaoud et al.): a surface above it keeps the standard bound.
 constexpr double kLoosenBelowDeg = 26.5;
 /// The repair's sweeps act within this many L of a poor triangle (RemeshComplex::
 /// focus_on_poor_triangles): the size cap it enters around the triangle's shortest edge (length
@@ -232,7 +231,7 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   double loosening = 1.0;
   for (int attempt = 0; attempt < options.repair_attempts && options.repair && quality.p30_percent > 0.0 &&
                        (attempt == 0 || quality.min_angle_deg < kLoosenBelowDeg);
-       ++attempt, loosening *= kRepairLoosening) {
+       ++attempt, loosening *= RemeshComplex::kDeviationLoosening) {
     const SurfaceQuality base = quality;
     auto trial = std::make_unique<RemeshComplex>(*chosen);
     trial->focus_on_poor_triangles(poor, kRepairReach * chosen->L);

@@ -13,10 +13,11 @@
 // each with the approximation bound 1.5 times looser near those triangles), and a last
 // quality-raising smoothing when Q_min is under kQualitySmoothingBelow (it never lowers the
 // smallest angle below min(its value, 30 degrees) nor adds angles under 30 degrees). Near
-// junction edges that stay far shorter than h, h is capped (surface/graded_size_cap.h). An absolute bound from the local thickness
-// (RemeshOptions::max_edge_mm) keeps thin sheets and tubes at edges that fit them; when those would
-// take more than half the budget, all of them are scaled up by one factor (reported), or dropped
-// when that factor would exceed 2.5 (they no longer fit the parts they are for). Progress:
+// junction edges that stay far shorter than h, h is capped (surface/graded_size_cap.h). An
+// absolute bound from the local thickness (RemeshOptions::max_edge_mm) keeps thin sheets and
+// tubes at edges that fit them; when those would take more than half the budget, all of them are
+// scaled up by one factor (reported), or dropped when that factor would exceed 2.5 (they no
+// longer fit the parts they are for). Progress:
 // a note per round (vertices, L in mm), after the polish, after each repair attempt and after the
 // quality smoothing.
 // Validity: no operation makes two triangles intersect (an exact guard), so a valid input gives an
