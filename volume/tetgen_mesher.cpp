@@ -9,6 +9,7 @@
 #include "volume/tetgen_mesher.h"
 
 #include "core/errors.h"
+#include "core/isolated_run.h"
 #include "core/union_find.h"
 
 #define TETLIBRARY
@@ -17,9 +18,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -120,6 +125,41 @@ std::vector<Vector3d> seeds_inside(const TriSurface& s, int id, double& mean_edg
   return seeds;
 }
 
+/// What the TetGen child sends back: nodes (x, y, z), tets (4 node indices) and each tet's
+/// region attribute (the tissue id, 0 without one), as raw arrays behind their three sizes.
+struct TetgenOutput {
+  std::vector<double> points;
+  std::vector<int> tets, ids;
+
+  std::string serialise() const {
+    const std::uint64_t sizes[3] = {points.size(), tets.size(), ids.size()};
+    std::string b(reinterpret_cast<const char*>(sizes), sizeof sizes);
+    b.append(reinterpret_cast<const char*>(points.data()), points.size() * sizeof(double));
+    b.append(reinterpret_cast<const char*>(tets.data()), tets.size() * sizeof(int));
+    b.append(reinterpret_cast<const char*>(ids.data()), ids.size() * sizeof(int));
+    return b;
+  }
+  static TetgenOutput parse(const std::string& b) {
+    TetgenOutput o;
+    std::uint64_t sizes[3];
+    if (b.size() < sizeof sizes) throw MeshingError("TetGen's result came back truncated");
+    std::memcpy(sizes, b.data(), sizeof sizes);
+    if (sizes[0] % 3 != 0 || sizes[1] != 4 * sizes[2] ||
+        b.size() != sizeof sizes + sizes[0] * sizeof(double) + (sizes[1] + sizes[2]) * sizeof(int))
+      throw MeshingError("TetGen's result came back malformed");
+    o.points.resize(sizes[0]);
+    o.tets.resize(sizes[1]);
+    o.ids.resize(sizes[2]);
+    const char* p = b.data() + sizeof sizes;
+    std::memcpy(o.points.data(), p, sizes[0] * sizeof(double));
+    p += sizes[0] * sizeof(double);
+    std::memcpy(o.tets.data(), p, sizes[1] * sizeof(int));
+    p += sizes[1] * sizeof(int);
+    std::memcpy(o.ids.data(), p, sizes[2] * sizeof(int));
+    return o;
+  }
+};
+
 std::string tetgen_failure(int code) {
   switch (code) {
     case 1: return "out of memory";
@@ -158,7 +198,7 @@ TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, 
   surface.validate("surface for TetGen");
   auto stage = progress.stage("TetGen volume mesh");
 
-  tetgenio in, out;
+  tetgenio in;
   in.firstnumber = 0;
   in.numberofpoints = static_cast<int>(surface.points.size());
   in.pointlist = new REAL[3 * surface.points.size()];
@@ -208,31 +248,50 @@ TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, 
   }
   std::vector<char> switches(result.switches.begin(), result.switches.end());
   switches.push_back('\0');
-  try {
-    tetrahedralize(switches.data(), &in, &out);
-  } catch (int code) {
-    throw MeshingError("TetGen failed (-" + result.switches + "): " + tetgen_failure(code));
-  }
+  // In a child process: TetGen may fault while it unwinds from an input it cannot recover
+  // (core/isolated_run.h). The child sends back the nodes, the tets and their tissue ids.
+  const IsolatedRun run = run_isolated([&](std::string& bytes) {
+    tetgenio out;
+    try {
+      tetrahedralize(switches.data(), &in, &out);
+    } catch (int code) {
+      throw std::runtime_error(tetgen_failure(code));
+    }
+    TetgenOutput o;
+    o.points.assign(out.pointlist, out.pointlist + 3 * static_cast<std::size_t>(out.numberofpoints));
+    o.tets.resize(4 * static_cast<std::size_t>(out.numberoftetrahedra));
+    o.ids.resize(static_cast<std::size_t>(out.numberoftetrahedra), 0);
+    for (int t = 0; t < out.numberoftetrahedra; ++t) {
+      for (int i = 0; i < 4; ++i) o.tets[4 * t + i] = out.tetrahedronlist[out.numberofcorners * t + i];
+      if (out.numberoftetrahedronattributes > 0)
+        o.ids[t] = static_cast<int>(std::lround(out.tetrahedronattributelist[out.numberoftetrahedronattributes * t]));
+    }
+    bytes = o.serialise();
+  });
+  if (!run.ok)
+    throw MeshingError("TetGen failed (-" + result.switches + "): " +
+                       (run.crashed ? "it crashed (" + run.failure +
+                                          ") on this surface; TetGen 1.5 can fault when it stops on nearly coplanar or "
+                                          "nearly touching facets"
+                                    : run.failure));
+  const TetgenOutput out = TetgenOutput::parse(run.bytes);
+  const int n_points = static_cast<int>(out.points.size() / 3), n_tets = static_cast<int>(out.ids.size());
 
   TetMesh& mesh = result.mesh;
   mesh.tissue_names = surface.tissue_names;
-  mesh.points.resize(out.numberofpoints);
-  for (int v = 0; v < out.numberofpoints; ++v)
-    mesh.points[v] = Vector3d(out.pointlist[3 * v], out.pointlist[3 * v + 1], out.pointlist[3 * v + 2]);
-  std::vector<char> keep(out.numberoftetrahedra, 1);
-  mesh.tets.resize(out.numberoftetrahedra);
-  mesh.tissue_ids.resize(out.numberoftetrahedra);
-  for (int t = 0; t < out.numberoftetrahedra; ++t) {
+  mesh.points.resize(n_points);
+  for (int v = 0; v < n_points; ++v) mesh.points[v] = Vector3d(out.points[3 * v], out.points[3 * v + 1], out.points[3 * v + 2]);
+  std::vector<char> keep(n_tets, 1);
+  mesh.tets.resize(n_tets);
+  mesh.tissue_ids.resize(n_tets);
+  for (int t = 0; t < n_tets; ++t) {
     std::array<int, 4> tet;
-    for (int i = 0; i < 4; ++i) tet[i] = out.tetrahedronlist[out.numberofcorners * t + i];
+    for (int i = 0; i < 4; ++i) tet[i] = out.tets[4 * t + i];
     if (signed_tet_volume(mesh.points[tet[0]], mesh.points[tet[1]], mesh.points[tet[2]], mesh.points[tet[3]]) < 0.0)
       std::swap(tet[2], tet[3]);
     mesh.tets[t] = tet;
-    const int id = out.numberoftetrahedronattributes > 0
-                       ? static_cast<int>(std::lround(out.tetrahedronattributelist[out.numberoftetrahedronattributes * t]))
-                       : 0;
-    mesh.tissue_ids[t] = id;
-    keep[t] = id >= 1 && id <= n_tissues;
+    mesh.tissue_ids[t] = out.ids[t];
+    keep[t] = out.ids[t] >= 1 && out.ids[t] <= n_tissues;
   }
   keep_tets(mesh, keep);
   std::vector<char> used(surface.points.size(), 0);

@@ -13,9 +13,11 @@
 //
 // Output: the boundary and every interface are exactly the input triangles, so the tet mesh and
 // the surface enclose the same volumes; the volume bound holds inside a tissue but not for every
-// tet touching the surface. Tets in no region (cavities of "outside") are dropped. TetGen's
-// failures (self-intersecting or degenerate input, which a valid surface does not have) become
-// MeshingError with the meaning of TetGen's error code. Deterministic.
+// tet touching the surface. Tets in no region (cavities of "outside") are dropped. TetGen runs
+// in a child process (core/isolated_run.h): its failures (self-intersecting or degenerate input,
+// which a valid surface does not have, or facets nearly coplanar within its tolerance) become
+// MeshingError with the meaning of TetGen's error code, and so does a crash of TetGen, which
+// TetGen 1.5 can have while it stops on such input. Deterministic.
 #pragma once
 
 #include "core/progress.h"
