@@ -3,7 +3,8 @@
 // multiresolution modeling", SGP 2004, extended to junction curves), against a size field
 // h(x) = L s(x):
 //   split     edges longer than 4/3 h at their midpoint, which is projected onto the edge's patch or,
-//             for a junction edge, onto its junction polyline (every triangle around it is split);
+//             for a junction edge, onto its junction polyline (every triangle around it is split),
+//             unless a half would turn by more than 154 degrees from the triangle it halves;
 //   collapse  edges shorter than 4/5 h when no edge of the result is longer than 4/3 h: a surface
 //             vertex into any neighbour across a non-junction edge, a curve vertex only into its
 //             neighbour along the same junction; corners (polyline ends, where curves meet) stay;

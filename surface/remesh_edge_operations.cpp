@@ -17,6 +17,13 @@ namespace {
 /// Flips keep the surface shape: the new pair of triangles must be at least this flat (cos 25 deg),
 /// or no less flat than the old pair.
 constexpr double kFlipFlatCos = 0.906;
+/// A half of a split triangle may turn away from it by at most acos(-0.9) = 154 degrees. Beyond
+/// that the projected midpoint has passed the far side of the triangle (a junction curve bending
+/// between the edge's ends, a patch creasing there), and the half lies folded flat over its
+/// neighbour: two triangles of one patch facing opposite ways, which TetGen's tolerance reads as
+/// intersecting. Smaller turns follow real creases, such as the tip of a thin lobule that the
+/// long edge bridged, and are kept.
+constexpr double kSplitFoldCos = -0.9;
 
 }  // namespace
 
@@ -47,6 +54,12 @@ bool RemeshComplex::split(int a, int b) {
   for (int t : ts) {
     created.push_back(moved_triangle(t, b, m, v));
     created.push_back(moved_triangle(t, a, m, v));
+    // Neither half may face away from the triangle it halves (kSplitFoldCos).
+    const Vector3d n = normal(t);
+    for (std::size_t k = created.size() - 2; k < created.size(); ++k) {
+      const Vector3d nk = area_vector(created[k].p[0], created[k].p[1], created[k].p[2]);
+      if (!(nk.norm() > 0.0) || nk.normalized().dot(n) < kSplitFoldCos) return false;
+    }
   }
   if (would_intersect(ts)) return false;
   if (curve < 0) {
