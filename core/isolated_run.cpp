@@ -44,24 +44,25 @@ char run_here(const std::function<void(std::string&)>& work, std::string& bytes)
   return kException;
 }
 
+/// When no child can be started: `work` here, without protection.
+IsolatedRun run_unprotected(const std::function<void(std::string&)>& work) {
+  IsolatedRun run;
+  run.ok = run_here(work, run.bytes) == kResult;
+  if (!run.ok) run.failure.swap(run.bytes);
+  return run;
+}
+
 }  // namespace
 
 IsolatedRun run_isolated(const std::function<void(std::string& bytes)>& work) {
-  IsolatedRun run;
   int fds[2];
-  if (::pipe2(fds, O_CLOEXEC) != 0) {
-    run.ok = run_here(work, run.bytes) == kResult;
-    if (!run.ok) run.failure.swap(run.bytes);
-    return run;
-  }
+  if (::pipe2(fds, O_CLOEXEC) != 0) return run_unprotected(work);
   std::fflush(nullptr);  // nothing buffered here is written twice
   const pid_t pid = ::fork();
   if (pid < 0) {
     ::close(fds[0]);
     ::close(fds[1]);
-    run.ok = run_here(work, run.bytes) == kResult;
-    if (!run.ok) run.failure.swap(run.bytes);
-    return run;
+    return run_unprotected(work);
   }
   if (pid == 0) {
     ::close(fds[0]);
@@ -78,6 +79,7 @@ IsolatedRun run_isolated(const std::function<void(std::string& bytes)>& work) {
     ::_exit(sent ? 0 : 1);
   }
   ::close(fds[1]);
+  IsolatedRun run;
   std::string received;
   char buffer[1 << 16];
   for (;;) {
