@@ -206,7 +206,8 @@ int tissue_id_of(double value, vtkIdType cell, const std::string& path) {
 }  // namespace
 
 TetMesh read_vtu(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": no such mesh file");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": no such mesh file");
   vtkNew<vtkXMLUnstructuredGridReader> reader;
   if (!reader->CanReadFile(path.c_str()))
     throw InputError(path + ": not a VTK XML unstructured grid (.vtu) file");

@@ -428,6 +428,25 @@ ImageHeader read_nrrd_header(const std::string& path) {
 
 // ----------------------------------------------------------------------------------- MetaImage
 
+// MetaIO (vtkMetaImageReader) copies a field's name and text values such as Name, Comment and
+// ObjectSubType into 255-byte buffers without a bound, so a longer one overruns them (glibc's
+// fortify check then aborts the process). Real headers stay far below: nine full-precision numbers
+// of a TransformMatrix take about 190 characters. ElementDataFile is held in a string and may be
+// longer (a deep path).
+constexpr std::size_t kMetaioMaxText = 254;
+
+void require_metaio_field_size(const Fields& f, const std::string& name, const std::string& value) {
+  const std::string key = trim(name);
+  const std::size_t start = value.find_first_not_of(" \t");
+  const std::size_t size = start == std::string::npos ? 0 : value.size() - start;
+  const auto too_long = [&](const std::string& what, std::size_t length) {
+    f.fail("MetaImage field " + what + " is " + std::to_string(length) +
+           " characters long; MetaIO reads at most " + std::to_string(kMetaioMaxText));
+  };
+  if (key.size() > kMetaioMaxText) too_long("name '" + key.substr(0, 40) + "...'", key.size());
+  if (size > kMetaioMaxText && lower(key) != "elementdatafile") too_long("'" + key + "'", size);
+}
+
 ImageHeader read_metaimage_header(const std::string& path) {
   Fields f(path);
   LineReader lines(f);
@@ -438,6 +457,7 @@ ImageHeader read_metaimage_header(const std::string& path) {
     const std::size_t eq = line.find('=');
     if (eq == std::string::npos)
       f.fail("MetaImage header line '" + line + "' is not 'Key = Value'");
+    require_metaio_field_size(f, line.substr(0, eq), line.substr(eq + 1));
     f.set(line.substr(0, eq), line.substr(eq + 1));
     data_file_found = f.find({"ElementDataFile"}) != nullptr;
   }

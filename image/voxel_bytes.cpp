@@ -99,8 +99,10 @@ bool stream_delivers(const std::string& file, std::uintmax_t offset, std::uintma
 // only warns through the global output window, and MetaIO prints to std::cerr and leaves the
 // missing voxels zero. So completeness is established here, before VTK reads anything.
 void require_data_present(const ImageHeader& h, const std::string& path) {
-  if (!std::filesystem::exists(h.data_file)) {
-    throw InputError(path + ": voxel data file " + h.data_file + " does not exist");
+  std::error_code ec;  // a name the file system refuses (too long, a loop) is a missing file
+  if (!std::filesystem::exists(h.data_file, ec)) {
+    throw InputError(path + ": voxel data file " + h.data_file + " does not exist" +
+                     (ec ? " (" + ec.message() + ")" : ""));
   }
   const std::uintmax_t size = data_file_size(h.data_file, path);
   // Bytes the data occupies on disk: known for raw data and from MetaImage's CompressedDataSize;

@@ -161,6 +161,8 @@ def main():
     write("uint16-labels.mha", mha.replace("MET_UCHAR", "MET_USHORT").encode() + b"ElementDataFile = LOCAL\n" +
           pack(cube_labels(inner=40000, fill=0), "H"))
     write("missing-data.mhd", mha + "ElementDataFile = missing-voxels.raw\n")
+    write("long-name.mha", mha.encode() + b"Name = " + b"breast " * 43 + b"\nElementDataFile = LOCAL\n" + raw8)
+    write("data-file-name-too-long.mhd", mha + "ElementDataFile = " + "v" * 300 + ".raw\n")
 
     # VTU meshes (ASCII, as a user might edit or cut one)
     write("ok.vtu", vtu())
