@@ -152,6 +152,8 @@ nlohmann::json mesh_job_json(const MeshJobResult& r) {
   const ComponentVolumeFit& f = r.meshing.island_fit;
   j["island_volume_fit"] = {{"fitted", f.fitted}, {"not_enclosed", f.not_enclosed}, {"blocked", f.blocked},
                             {"volume_moved_mm3", f.volume_moved_mm3}};
+  if (const auto& t = r.meshing.restoration)
+    j["volume_restoration"] = tet_restoration_json(*t, r.voxel_volume_mm3, mesh.tissue_names);
   return j;
 }
 
@@ -173,6 +175,7 @@ std::string mesh_job_text(const MeshJobResult& r) {
     s << "small components scaled to their voxel volume: " << f.fitted << fmt(" (%.2f mm^3 moved); ", f.volume_moved_mm3)
       << f.blocked << " left as meshed (a tet would have gone below its angle), " << f.not_enclosed
       << " not enclosed by one tissue\n";
+  if (const auto& t = r.meshing.restoration) s << tet_restoration_text(*t, r.voxel_volume_mm3, mesh.tissue_names);
   for (const auto& w : r.meshing.warnings) s << "WARNING: " << w << "\n";
   return s.str();
 }

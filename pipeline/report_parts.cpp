@@ -2,6 +2,7 @@
 #include "pipeline/report_parts.h"
 
 #include <cstdio>
+#include <utility>
 #include <sstream>
 
 namespace tissuemesh::report_parts {
@@ -119,6 +120,48 @@ std::string islands_text(const IslandAbsorption& a, const std::vector<std::strin
     s << "  " << tissue_name(id, names) << ": its largest component (" << n << " voxels) is under the threshold and kept"
       << " (a tissue is never removed whole)\n";
   return s.str();
+}
+
+namespace {
+
+// Each tissue's tet volume against its voxel volume before the tet volume restoration, percent,
+// in tissue order.
+std::vector<std::pair<std::string, double>> errors_before_restoration(const TetVolumeRestoration& t,
+                                                                      const std::map<int, double>& voxel_mm3,
+                                                                      const std::vector<std::string>& names) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& [id, v] : t.offsets.volume_before_mm3) {
+    const auto ref = voxel_mm3.find(id);
+    if (ref == voxel_mm3.end() || id < 1 || id > static_cast<int>(names.size()) || ref->second <= 0.0) continue;
+    out.emplace_back(names[id - 1], 100.0 * (v / ref->second - 1.0));
+  }
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json tet_restoration_json(const TetVolumeRestoration& t, const std::map<int, double>& voxel_mm3,
+                                    const std::vector<std::string>& names) {
+  return {{"rounds", t.offsets.rounds},
+          {"nodes_moved", t.nodes_moved},
+          {"max_offset_mm", t.max_offset_mm},
+          {"nodes_held", t.offsets.frozen_vertices},
+          {"stopped_early", t.offsets.stopped_early},
+          {"volume_error_percent_before", errors_before_restoration(t, voxel_mm3, names)}};
+}
+
+std::string tet_restoration_text(const TetVolumeRestoration& t, const std::map<int, double>& voxel_mm3,
+                                 const std::vector<std::string>& names) {
+  std::ostringstream o;
+  o << "tet volume restoration: " << t.offsets.rounds << " rounds of patch offsets moved " << t.nodes_moved
+    << " boundary and interface nodes, largest move " << fmt("%.3f", t.max_offset_mm) << " mm";
+  if (t.offsets.frozen_vertices > 0)
+    o << "; " << t.offsets.frozen_vertices << " nodes held where a round would have flattened a tet";
+  o << "; before it";
+  for (const auto& [name, percent] : errors_before_restoration(t, voxel_mm3, names))
+    o << " " << name << fmt(" %+.2f %%", percent);
+  o << "\n";
+  return o.str();
 }
 
 nlohmann::json deviations_json(const std::vector<VolumeDeviation>& deviations) {

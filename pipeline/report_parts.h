@@ -7,9 +7,11 @@
 #include "image/small_islands.h"
 #include "pipeline/mesh_checks.h"
 #include "volume/mesh3_optimisation.h"
+#include "volume/tet_volume_restoration.h"
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,14 @@ std::string sliver_repair_text(const SliverRepair& repair);
 /// whole although under the threshold.
 nlohmann::json islands_json(const IslandAbsorption& a, const std::vector<std::string>& names);
 std::string islands_text(const IslandAbsorption& a, const std::vector<std::string>& names);
+
+/// The tets' volume restoration: rounds, nodes moved and held, largest move, and each tissue's
+/// volume error against `voxel_mm3` (tissue id -> mm^3) before it, percent; as JSON and as one
+/// text line.
+nlohmann::json tet_restoration_json(const TetVolumeRestoration& t, const std::map<int, double>& voxel_mm3,
+                                    const std::vector<std::string>& names);
+std::string tet_restoration_text(const TetVolumeRestoration& t, const std::map<int, double>& voxel_mm3,
+                                 const std::vector<std::string>& names);
 
 /// Tissues whose meshed volume is outside the tolerance: name, volume, reference, error percent.
 nlohmann::json deviations_json(const std::vector<VolumeDeviation>& deviations);

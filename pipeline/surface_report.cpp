@@ -110,20 +110,6 @@ std::string table2_text(const std::vector<StepsRow>& rows) {
   return o.str();
 }
 
-// Each tissue's tet volume against its voxel volume before the tet volume restoration, percent,
-// in tissue order.
-std::vector<std::pair<std::string, double>> errors_before_restoration(const TetVolumeRestoration& t,
-                                                                      const std::map<int, double>& voxel_mm3,
-                                                                      const std::vector<std::string>& names) {
-  std::vector<std::pair<std::string, double>> out;
-  for (const auto& [id, v] : t.offsets.volume_before_mm3) {
-    const auto ref = voxel_mm3.find(id);
-    if (ref == voxel_mm3.end() || id < 1 || id > static_cast<int>(names.size()) || ref->second <= 0.0) continue;
-    out.emplace_back(names[id - 1], 100.0 * (v / ref->second - 1.0));
-  }
-  return out;
-}
-
 }  // namespace
 
 nlohmann::json surface_job_json(const SurfaceJobResult& r) {
@@ -221,13 +207,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
       for (const SizeRound& b : v.meshing.budget) rounds.push_back({{"size_factor", b.factor}, {"tets", b.tets}});
       vj["target_tets_rounds"] = rounds;
       if (const auto& t = v.meshing.restoration) {
-        vj["volume_restoration"] = {{"rounds", t->offsets.rounds},
-                                    {"nodes_moved", t->nodes_moved},
-                                    {"max_offset_mm", t->max_offset_mm},
-                                    {"nodes_held", t->offsets.frozen_vertices},
-                                    {"stopped_early", t->offsets.stopped_early},
-                                    {"volume_error_percent_before",
-                                     errors_before_restoration(*t, r.voxel_volume_mm3, v.meshing.mesh.tissue_names)}};
+        vj["volume_restoration"] = tet_restoration_json(*t, r.voxel_volume_mm3, v.meshing.mesh.tissue_names);
       }
     }
     vj["quality"] = to_json(v.quality);
@@ -342,14 +322,7 @@ std::string surface_job_text(const SurfaceJobResult& r) {
         o << ")\n";
       }
       if (const auto& t = v.meshing.restoration) {
-        o << "tet volume restoration: " << t->offsets.rounds << " rounds of patch offsets moved " << t->nodes_moved
-          << " boundary and interface nodes, largest move " << fmt("%.3f", t->max_offset_mm) << " mm";
-        if (t->offsets.frozen_vertices > 0)
-          o << "; " << t->offsets.frozen_vertices << " nodes held where a round would have flattened a tet";
-        o << "; before it";
-        for (const auto& [name, percent] : errors_before_restoration(*t, r.voxel_volume_mm3, v.meshing.mesh.tissue_names))
-          o << " " << name << fmt(" %+.2f %%", percent);
-        o << "\n";
+        o << tet_restoration_text(*t, r.voxel_volume_mm3, v.meshing.mesh.tissue_names);
       }
       o << "\n";
     }

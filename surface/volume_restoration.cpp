@@ -72,12 +72,14 @@ std::map<int, double> enclosed_volumes(const TriSurface& s) {
 }
 
 VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& reference, double tolerance_rel,
-                                  int max_rounds, const RestorationCheck& check) {
+                                  int max_rounds, const RestorationCheck& check, double max_total_move_mm) {
   const int n_tissues = static_cast<int>(s.tissue_names.size());
   for (const auto& [id, v] : reference)
     if (id < 1 || id > n_tissues || !(v > 0.0 && std::isfinite(v)))
       throw InputError("volume restoration: reference volume of tissue id " + std::to_string(id) +
                        " is not a positive volume of a tissue of the surface");
+  if (!(max_total_move_mm > 0.0))
+    throw InputError("volume restoration: the bound on a vertex's moves must be > 0 mm");
   VolumeRestoration result;
   result.volume_before_mm3 = enclosed_volumes(s);
   result.volume_after_mm3 = result.volume_before_mm3;
@@ -114,6 +116,8 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
     for (int w : neighbours[v]) shortest = std::min(shortest, (s.points[w] - s.points[v]).norm());
     if (std::isfinite(shortest)) max_move[v] = kMaxMoveOfEdge * shortest;
   }
+  // What is left of each vertex's bound on the sum of its moves.
+  std::vector<double> move_left(s.points.size(), max_total_move_mm);
   std::vector<double> weight(s.points.size(), 0.0);
   {
     std::vector<int> ring(s.points.size(), kTaperRings);
@@ -242,7 +246,8 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
       largest = 0.0;
       for (std::size_t v = 0; v < s.points.size(); ++v) {
         if (weight[v] == 0.0 || normal[v].squaredNorm() == 0.0) continue;
-        const double move = std::clamp(scale * weight[v] * d[vertex_patch[v]], -max_move[v], max_move[v]);
+        const double cap = std::min(max_move[v], move_left[v]);
+        const double move = std::clamp(scale * weight[v] * d[vertex_patch[v]], -cap, cap);
         s.points[v] += move * normal[v].normalized();
         largest = std::max(largest, std::abs(move));
       }
@@ -305,6 +310,7 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
       result.stopped_early = true;
       break;
     }
+    for (std::size_t v = 0; v < s.points.size(); ++v) move_left[v] -= (s.points[v] - before[v]).norm();
     ++result.rounds;
     result.max_offset_mm = std::max(result.max_offset_mm, largest);
     result.volume_after_mm3 = volumes;

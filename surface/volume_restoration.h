@@ -33,6 +33,7 @@
 #include "core/tri_surface.h"
 
 #include <functional>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -60,11 +61,13 @@ using RestorationCheck = std::function<bool(const TriSurface& moved, std::vector
 
 /// Moves `surface`'s non-junction vertices as above so that every tissue of `reference_mm3`
 /// (tissue id -> volume, > 0) encloses that volume; rounds stop when every tissue is within
-/// `tolerance_rel` (relative) or after `max_rounds`. With the default check, `surface` must be
-/// valid and intersection free. Throws InputError for a reference naming an unknown tissue or not
-/// > 0.
+/// `tolerance_rel` (relative) or after `max_rounds`. No vertex moves further than
+/// `max_total_move_mm` over all rounds (the sum of its moves; infinity: no bound). With the default
+/// check, `surface` must be valid and intersection free. Throws InputError for a reference naming
+/// an unknown tissue or not > 0, or a bound not > 0.
 VolumeRestoration restore_volumes(TriSurface& surface, const std::map<int, double>& reference_mm3,
                                   double tolerance_rel = 1e-4, int max_rounds = 8,
-                                  const RestorationCheck& check = {});
+                                  const RestorationCheck& check = {},
+                                  double max_total_move_mm = std::numeric_limits<double>::infinity());
 
 }  // namespace tissuemesh

@@ -40,6 +40,7 @@ DirectMeshParams DirectMeshParams::from_yaml(YamlMap& m) {
   p.facet_distance_ratio = m.in_range("facet_distance_ratio", p.facet_distance_ratio, 0.001, 1.0);
   p.min_edge_mm = m.in_range("min_edge_mm", p.min_edge_mm, 0.0, 1e3);
   p.fit_island_volumes_below_mm3 = m.in_range("fit_island_volumes_below_mm3", p.fit_island_volumes_below_mm3, 0.0, 1e9);
+  p.restore_volumes = m.boolean("restore_volumes", p.restore_volumes);
   p.optimise.read(m);
   m.finish();
   return p;
@@ -75,6 +76,7 @@ void DirectMeshParams::to_yaml(YAML::Emitter& out) const {
   out << YAML::Key << "facet_distance_ratio" << YAML::Value << facet_distance_ratio;
   out << YAML::Key << "min_edge_mm" << YAML::Value << min_edge_mm;
   out << YAML::Key << "fit_island_volumes_below_mm3" << YAML::Value << fit_island_volumes_below_mm3;
+  out << YAML::Key << "restore_volumes" << YAML::Value << restore_volumes;
   optimise.emit(out);
   out << YAML::EndMap;
 }

@@ -60,6 +60,12 @@ struct DirectMeshParams {
   /// too small. 0 = off.
   double fit_island_volumes_below_mm3 = 100.0;
 
+  /// Last, the mesh's boundary and interface nodes move by patch offsets so that every tissue's
+  /// tets fill its voxel volume (tet_volume_restoration.h): chords of a curved boundary, label
+  /// smoothing, coarse elements and the half voxels beyond the border voxels' centres otherwise
+  /// take a few per cent off a tissue.
+  bool restore_volumes = true;
+
   Mesh3Optimisation optimise;           ///< optimisation and sliver repair (mesh3_optimisation.h)
 
   /// Reads the `direct:` map (unknown keys are errors; values range-checked with the key named).

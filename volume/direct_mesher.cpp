@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "core/face_key.h"
+#include "core/number_format.h"
 #include "image/label_components.h"
 #include "image/local_thickness.h"
 #include "volume/budget_refinement.h"
@@ -18,6 +19,7 @@
 #include "volume/image_sizing.h"
 #include "volume/label_weights.h"
 #include "volume/mesh3_steps.h"
+#include "quality/conformity.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Image_3.h>
@@ -123,6 +125,11 @@ struct GridSizeField {
 // below this dihedral angle (or below its angle before, if that was smaller).
 constexpr double kIslandMaxScale = 1.25;
 constexpr double kIslandMinDihedralDeg = 10.0;
+// The volume restoration moves a node by at most this many of the largest voxel spacing in all:
+// the labels place a boundary no closer than that, and a tissue thinner than its elements (a
+// vessel one element across) cannot get its volume back by offsets; larger moves there would
+// only make spikes.
+constexpr double kRestorationMaxMoveOfVoxel = 1.0;
 
 // Edge / radius conversions of GridSizeField.
 constexpr double kFacetRadiusPerEdge = 0.5773502691896258;  // 1 / sqrt(3)
@@ -262,6 +269,15 @@ bool onto_label_interface(const Domain& domain, const Eigen::Vector3d& spacing, 
   if (best == 1e300) return false;
   x = found;
   return true;
+}
+
+// Each tissue's voxel volume, mm^3.
+std::map<int, double> voxel_volumes(const LabelImage& ids) {
+  std::map<int, double> volume;
+  for (const std::int32_t id : ids.labels)
+    if (id > 0) volume[id] += 1.0;
+  for (auto& [id, v] : volume) v *= ids.voxel_volume();
+  return volume;
 }
 
 }  // namespace
@@ -512,6 +528,22 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
     result.missed.push_back({names[cc.tissue_id - 1], cc.voxels, cc.voxels * ids.voxel_volume(), cc.centroid_mm});
   }
   stage.note(std::to_string(mesh.tets.size()) + " tets, " + std::to_string(mesh.points.size()) + " nodes");
+  // Last, so that no later step undoes it: the repairs' flips across interfaces and the smoothing's
+  // projections onto the image's interfaces would move the restored boundary back.
+  if (params.restore_volumes) {
+    if (check_conformity(mesh).conforming()) {
+      auto restore = progress.stage("tet volume restoration");
+      std::map<int, double> target;  // tissues with tets; one without is reported as not meshed
+      for (const auto& [id, v] : voxel_volumes(ids))
+        if (std::find(mesh.tissue_ids.begin(), mesh.tissue_ids.end(), id) != mesh.tissue_ids.end()) target[id] = v;
+      result.restoration = restore_tet_volumes(mesh, target, kRestorationMaxMoveOfVoxel * ids.spacing.maxCoeff());
+      restore.note(std::to_string(result.restoration->offsets.rounds) + " rounds, " +
+                   std::to_string(result.restoration->nodes_moved) + " nodes moved by at most " +
+                   format_double("%.3f", result.restoration->max_offset_mm) + " mm");
+    } else {
+      result.warnings.push_back("volume restoration skipped: the mesh does not conform (see the conformity counts)");
+    }
+  }
   return result;
 }
 

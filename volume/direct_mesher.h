@@ -11,7 +11,9 @@
 // field that is finer around `refine_tissue`, or, with a tet budget, sizes from each tissue's local
 // thickness scaled to meet the budget (image_sizing.h); then optional Lloyd/ODT, sliver
 // perturbation/exudation and the sliver repairs of Mesh3Optimisation; then small enclosed
-// components are scaled to their voxel volume (component_volume_fit.h). All tets of the result are
+// components are scaled to their voxel volume (component_volume_fit.h), and, with
+// restore_volumes, every tissue's boundary and interface nodes move so that its tets fill its voxel
+// volume (tet_volume_restoration.h). All tets of the result are
 // positively oriented in physical LPS millimetres, even when the image direction matrix is a
 // reflection. Deterministic: the same image and parameters give the same mesh.
 #pragma once
@@ -24,10 +26,13 @@
 #include "volume/component_volume_fit.h"
 #include "volume/direct_mesh_params.h"
 #include "volume/image_sizing.h"
+#include "volume/tet_volume_restoration.h"
 #include "volume/mesh3_optimisation.h"
 
 #include <Eigen/Core>
 
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +57,8 @@ struct DirectMeshResult {
   SliverRepair repair;                   ///< what the sliver repairs did
   DirectSizing sizing;                   ///< with direct.target_tets: sizes and counts
   ComponentVolumeFit island_fit;         ///< small enclosed components scaled to their voxel volume
+  /// With params.restore_volumes on a conforming mesh: the tets' volume restoration.
+  std::optional<TetVolumeRestoration> restoration;
   /// Things the user must know, e.g. an optimiser stopped by its time limit (its result then
   /// depends on machine speed, so repeated runs may differ).
   std::vector<std::string> warnings;

@@ -13,7 +13,8 @@ namespace {
 constexpr double kMinDihedralDeg = 10.0;
 }  // namespace
 
-TetVolumeRestoration restore_tet_volumes(TetMesh& mesh, const std::map<int, double>& reference_mm3) {
+TetVolumeRestoration restore_tet_volumes(TetMesh& mesh, const std::map<int, double>& reference_mm3,
+                                         double max_total_move_mm) {
   TetVolumeRestoration result;
   std::vector<int> node_of_point;
   TriSurface surface = interface_surface(mesh, &node_of_point);
@@ -49,7 +50,7 @@ TetVolumeRestoration restore_tet_volumes(TetMesh& mesh, const std::map<int, doub
     }
     return bad_vertices.empty();
   };
-  result.offsets = restore_volumes(surface, reference_mm3, 1e-4, 8, tets_stay);
+  result.offsets = restore_volumes(surface, reference_mm3, 1e-4, 8, tets_stay, max_total_move_mm);
   for (std::size_t i = 0; i < node_of_point.size(); ++i) {
     Eigen::Vector3d& x = mesh.points[node_of_point[i]];
     if (surface.points[i] == x) continue;

@@ -21,6 +21,7 @@
 #include "surface/volume_restoration.h"
 
 #include <cstddef>
+#include <limits>
 #include <map>
 
 namespace tissuemesh {
@@ -31,9 +32,11 @@ struct TetVolumeRestoration {
   double max_offset_mm = 0.0;   ///< largest move
 };
 
-/// Restores `mesh` as above towards `reference_mm3` (tissue id -> mm^3, > 0). The mesh must be
-/// conforming (a face in at most two tets) with every tet positively oriented. Throws InputError
-/// for a reference naming an unknown tissue or not > 0, or a non-conforming mesh.
-TetVolumeRestoration restore_tet_volumes(TetMesh& mesh, const std::map<int, double>& reference_mm3);
+/// Restores `mesh` as above towards `reference_mm3` (tissue id -> mm^3, > 0), no node moving
+/// further than `max_total_move_mm` in all (infinity: no bound). The mesh must be conforming (a
+/// face in at most two tets) with every tet positively oriented. Throws InputError for a reference
+/// naming an unknown tissue or not > 0, a bound not > 0, or a non-conforming mesh.
+TetVolumeRestoration restore_tet_volumes(TetMesh& mesh, const std::map<int, double>& reference_mm3,
+                                         double max_total_move_mm = std::numeric_limits<double>::infinity());
 
 }  // namespace tissuemesh

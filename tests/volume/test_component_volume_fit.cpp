@@ -48,6 +48,7 @@ Meshed mesh(double fit_below_mm3) {
   p.refine_tissue = "";
   p.smooth_boundaries = false;
   p.fit_island_volumes_below_mm3 = fit_below_mm3;
+  p.restore_volumes = false;  // the fit alone
   Progress quiet;
   Meshed r{mesh_labels_direct(islands(), {"fat", "fgt"}, p, quiet), {}};
   r.quality = compute_quality(r.result.mesh);

@@ -141,8 +141,29 @@ TEST(TetVolumeRestoration, ALargeAskIsReachedOverRoundsOfClippedMoves) {
   EXPECT_GT(a.r.offsets.rounds, 1);
 }
 
+// The same 2.3 times, with no node allowed to move more than 0.2 mm in all: every node stays
+// within it, and the ball grows as far as that lets it.
+TEST(TetVolumeRestoration, NoNodeMovesFurtherThanTheBound) {
+  CoarseMesh c = coarse_mesh(2.5);
+  const TetMesh original = c.mesh;
+  const std::vector<double> before = tissue_volumes(c.mesh);
+  const std::map<int, double> reference = {{1, before[1] - 1.3 * before[2]}, {2, 2.3 * before[2]}};
+  const double floor_deg = std::min(min_dihedral(c.mesh), 10.0);
+  const TetVolumeRestoration r = restore_tet_volumes(c.mesh, reference, 0.2);
+  double largest = 0.0;
+  for (std::size_t n = 0; n < original.points.size(); ++n)
+    largest = std::max(largest, (c.mesh.points[n] - original.points[n]).norm());
+  EXPECT_LE(largest, 0.2 + 1e-12);
+  EXPECT_GT(largest, 0.15);  // the bound, not the ask, stopped it
+  const std::vector<double> after = tissue_volumes(c.mesh);
+  EXPECT_GT(after[2], before[2]);
+  EXPECT_LT(after[2], 0.9 * reference.at(2));
+  expect_valid_above(c.mesh, floor_deg);
+}
+
 TEST(TetVolumeRestoration, BadReferenceIsAnInputError) {
   CoarseMesh c = coarse_mesh(2.5);
   EXPECT_THROW(restore_tet_volumes(c.mesh, {{3, 100.0}}), InputError);
   EXPECT_THROW(restore_tet_volumes(c.mesh, {{1, -1.0}}), InputError);
+  EXPECT_THROW(restore_tet_volumes(c.mesh, {{1, 100.0}}, 0.0), InputError);
 }
