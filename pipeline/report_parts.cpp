@@ -140,6 +140,19 @@ std::vector<std::pair<std::string, double>> errors_before_restoration(const TetV
 
 }  // namespace
 
+std::vector<std::string> released_names(const VolumeRestoration& r, const std::vector<std::string>& names) {
+  std::vector<std::string> out;
+  for (int id : r.released) out.push_back(id >= 1 && id <= static_cast<int>(names.size()) ? names[id - 1] : std::to_string(id));
+  return out;
+}
+
+std::string released_text(const VolumeRestoration& r, const std::vector<std::string>& names) {
+  if (r.released.empty()) return "";
+  std::string o = "; not restorable by offsets (left as they were):";
+  for (const std::string& n : released_names(r, names)) o += " " + n;
+  return o;
+}
+
 nlohmann::json tet_restoration_json(const TetVolumeRestoration& t, const std::map<int, double>& voxel_mm3,
                                     const std::vector<std::string>& names) {
   return {{"rounds", t.offsets.rounds},
@@ -147,6 +160,7 @@ nlohmann::json tet_restoration_json(const TetVolumeRestoration& t, const std::ma
           {"max_offset_mm", t.max_offset_mm},
           {"nodes_held", t.offsets.frozen_vertices},
           {"stopped_early", t.offsets.stopped_early},
+          {"tissues_released", released_names(t.offsets, names)},
           {"volume_error_percent_before", errors_before_restoration(t, voxel_mm3, names)}};
 }
 
@@ -157,6 +171,7 @@ std::string tet_restoration_text(const TetVolumeRestoration& t, const std::map<i
     << " boundary and interface nodes, largest move " << fmt("%.3f", t.max_offset_mm) << " mm";
   if (t.offsets.frozen_vertices > 0)
     o << "; " << t.offsets.frozen_vertices << " nodes held where a round would have flattened a tet";
+  o << released_text(t.offsets, names);
   o << "; before it";
   for (const auto& [name, percent] : errors_before_restoration(t, voxel_mm3, names))
     o << " " << name << fmt(" %+.2f %%", percent);

@@ -31,6 +31,11 @@ std::string sliver_repair_text(const SliverRepair& repair);
 nlohmann::json islands_json(const IslandAbsorption& a, const std::vector<std::string>& names);
 std::string islands_text(const IslandAbsorption& a, const std::vector<std::string>& names);
 
+/// Names of the tissues a restoration released (more than 1 % off and not moved by a round), and
+/// the same as a text fragment ("; not restorable by offsets …", empty when none).
+std::vector<std::string> released_names(const VolumeRestoration& r, const std::vector<std::string>& names);
+std::string released_text(const VolumeRestoration& r, const std::vector<std::string>& names);
+
 /// The tets' volume restoration: rounds, nodes moved and held, largest move, and each tissue's
 /// volume error against `voxel_mm3` (tissue id -> mm^3) before it, percent; as JSON and as one
 /// text line.

@@ -147,7 +147,8 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
       j["remesh"]["volume_restoration"] = {{"offset_rounds", r.restoration->rounds},
                                            {"largest_move_mm", r.restoration->max_offset_mm},
                                            {"vertices_held", r.restoration->frozen_vertices},
-                                           {"stopped_to_stay_intersection_free", r.restoration->stopped_early}};
+                                           {"stopped_to_stay_intersection_free", r.restoration->stopped_early},
+                                           {"tissues_released", released_names(*r.restoration, s.tissue_names)}};
   }
   if (r.approach) {
     const Eigen::Vector3d &e = r.approach->entry(), &c = r.approach->target_centroid();
@@ -262,7 +263,7 @@ std::string surface_job_text(const SurfaceJobResult& r) {
                       " vertices held in place where a round would have broken the surface"
                 : std::string())
         << (r.restoration->stopped_early ? " (stopped where a further round would make the surface invalid)" : "")
-        << "\n";
+        << released_text(*r.restoration, s.tissue_names) << "\n";
     if (r.hausdorff)
       o << "Hausdorff distance to the extracted surface: " << fmt("%.3f", r.hausdorff->symmetric_mm())
         << " mm (remeshed -> extracted " << fmt("%.3f", r.hausdorff->a_to_b_mm) << " mm, extracted -> remeshed "

@@ -35,6 +35,8 @@ constexpr double kFrozenMarginDeg = 2.0;  // triangles this close to the smalles
 constexpr double kMaxMoveOfEdge = 1.0;    // largest move of a vertex a round, in its shortest edges
 constexpr double kErrorSlack = 1e-3;      // a round may raise one tissue's relative error this much,
 constexpr double kErrorSlackOfSum = 0.05; // plus this part of the sum of the errors it corrects
+constexpr double kReleaseMinError = 0.01; // a tissue this far off that a round cannot move
+constexpr double kStuckGain = 0.1;        // (whose error falls by less than this part of itself) is released
 
 double triangle_min_angle_deg(const TriSurface& s, const std::array<int, 3>& w) {
   double smallest = 180.0;
@@ -176,17 +178,17 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
   for (const auto& w : s.triangles)
     if (triangle_min_angle_deg(s, w) < min_angle_before + kFrozenMarginDeg)
       for (int v : w) weight[v] = 0.0;
-  // Only tissues with a reference constrain the offsets.
+  // Only tissues with a reference constrain the offsets, until they are released (below).
   std::vector<int> constrained;
   for (const auto& [id, v] : reference) constrained.push_back(id);
-  const int np = static_cast<int>(pairs.size()), nc = static_cast<int>(constrained.size());
-  if (np == 0 || nc == 0) return result;
+  const int np = static_cast<int>(pairs.size());
+  if (np == 0 || constrained.empty()) return result;
 
   auto error = [&](const std::map<int, double>& volumes, int id) {
     return std::abs(volumes.at(id) / reference.at(id) - 1.0);
   };
   auto within = [&](const std::map<int, double>& volumes) {
-    for (const auto& [id, ref] : reference)
+    for (int id : constrained)
       if (error(volumes, id) > tolerance_rel) return false;
     return true;
   };
@@ -216,6 +218,7 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
       // C d = deficit, C(i, k) = +A_k when tissue i is p of patch k, -A_k when it is q; each row
       // divided by the tissue's reference volume, so that where held vertices leave no exact
       // solution the least-squares one weighs every tissue's relative error alike.
+      const int nc = static_cast<int>(constrained.size());
       Eigen::MatrixXd C = Eigen::MatrixXd::Zero(nc, np);
       Eigen::VectorXd deficit(nc);
       for (int i = 0; i < nc; ++i) {
@@ -272,41 +275,75 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
     // Where a round breaks the surface (a thin gap closing, a fold turning over), the vertices of
     // those triangles and their neighbours stop moving and the offsets are solved again, so that
     // one tight spot among thousands of islands does not hold every patch back; after
-    // kFreezings of these, the round is retried at half its offsets, then undone.
-    std::vector<int> bad;
-    bool ok = false;
-    Eigen::VectorXd d = solve();
-    for (int freezing = 0; !ok; ++freezing) {
-      ok = attempt(d, 1.0, bad);
-      if (ok || freezing == kFreezings || (bad.empty() && bad_vertices.empty())) break;
-      for (int t : bad) bad_vertices.insert(bad_vertices.end(), s.triangles[t].begin(), s.triangles[t].end());
-      for (int v : bad_vertices) {
-        hold(v);
-        for (int w : neighbours[v]) hold(w);
-      }
-      d = solve();
-    }
-    double scale = 0.5;
-    for (int halving = 0; halving < kHalvings && !ok; ++halving, scale *= 0.5) ok = attempt(d, scale, bad);
-    // A round must also bring the tissues closer to their references (with vertices held, the
-    // offsets are a least-squares compromise that could trade one tissue for another): the sum of
-    // the relative errors falls, and no tissue's grows by more than kErrorSlack plus a small part
-    // of that sum (a large step is not linear: a growing ball takes more than its first-order
-    // volume from its neighbour).
+    // kFreezings of these, the round is retried at half its offsets, then undone. One try of the
+    // round: true when kept.
     std::map<int, double> volumes;
-    if (ok) {
-      volumes = enclosed_volumes(s);
-      double sum_before = 0.0, sum_after = 0.0;
-      for (const auto& [id, ref] : reference) sum_before += error(result.volume_after_mm3, id);
-      for (const auto& [id, ref] : reference) {
-        const double e0 = error(result.volume_after_mm3, id), e1 = error(volumes, id);
-        sum_after += e1;
-        ok = ok && e1 <= e0 + kErrorSlack + kErrorSlackOfSum * sum_before;
+    bool release = false;  // a tissue was released: solve the round again
+    auto try_round = [&] {
+      std::vector<int> bad;
+      bool ok = false;
+      Eigen::VectorXd d = solve();
+      for (int freezing = 0; !ok; ++freezing) {
+        ok = attempt(d, 1.0, bad);
+        if (ok || freezing == kFreezings || (bad.empty() && bad_vertices.empty())) break;
+        for (int t : bad) bad_vertices.insert(bad_vertices.end(), s.triangles[t].begin(), s.triangles[t].end());
+        for (int v : bad_vertices) {
+          hold(v);
+          for (int w : neighbours[v]) hold(w);
+        }
+        d = solve();
       }
-      ok = ok && sum_after < sum_before;
-    }
-    if (!ok) {
-      s.points = before;
+      double scale = 0.5;
+      for (int halving = 0; halving < kHalvings && !ok; ++halving, scale *= 0.5) ok = attempt(d, scale, bad);
+      // A round must also bring the tissues closer to their references (with vertices held, the
+      // offsets are a least-squares compromise that could trade one tissue for another): the sum of
+      // the relative errors falls, and no tissue's grows by more than kErrorSlack plus a small part
+      // of that sum (a large step is not linear: a growing ball takes more than its first-order
+      // volume from its neighbour).
+      // A tissue that this round could not move towards its reference although it is far off (a
+      // tube whose every vertex bends, a blob whose vertices are held, an element across) would
+      // otherwise hold the others back: its large relative deficit dominates the least-squares
+      // offsets, which then trade the other tissues' small ones for nothing. Of those, the one
+      // furthest off is released (it no longer constrains the offsets, and its vertices stay where
+      // they are, so that its neighbours do not take its volume) and the round is solved again; a
+      // tissue within kReleaseMinError is never released.
+      volumes.clear();
+      if (ok) {
+        volumes = enclosed_volumes(s);
+        double sum_before = 0.0, sum_after = 0.0;
+        for (int id : constrained) sum_before += error(result.volume_after_mm3, id);
+        bool better = true;
+        for (int id : constrained) {
+          const double e0 = error(result.volume_after_mm3, id), e1 = error(volumes, id);
+          sum_after += e1;
+          better = better && e1 <= e0 + kErrorSlack + kErrorSlackOfSum * sum_before;
+        }
+        if (better && sum_after < sum_before) return true;
+        int stuck = -1;
+        for (int id : constrained) {
+          const double e0 = error(result.volume_after_mm3, id);
+          if (e0 >= kReleaseMinError && error(volumes, id) > (1.0 - kStuckGain) * e0 &&
+              (stuck < 0 || e0 > error(result.volume_after_mm3, stuck)))
+            stuck = id;
+        }
+        if (stuck >= 0 && constrained.size() > 1) {
+          constrained.erase(std::find(constrained.begin(), constrained.end(), stuck));
+          result.released.push_back(stuck);
+          for (std::size_t t = 0; t < s.triangles.size(); ++t)
+            if (s.labels[t][0] == stuck || s.labels[t][1] == stuck)
+              for (int v : s.triangles[t]) weight[v] = 0.0;
+          release = true;
+        }
+      }
+      return false;
+    };
+    bool kept = false;
+    do {
+      release = false;
+      kept = try_round();
+      if (!kept) s.points = before;
+    } while (!kept && release);
+    if (!kept) {
       result.stopped_early = true;
       break;
     }

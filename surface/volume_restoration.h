@@ -47,6 +47,9 @@ struct VolumeRestoration {
   /// A round was undone (at an eighth of its offsets still invalid, flipped or a smaller angle).
   bool stopped_early = false;
   std::size_t frozen_vertices = 0;          ///< vertices held in place where a round broke the surface
+  /// Tissues released, in order: more than 1 % off, a round could not move them towards their
+  /// reference, so they stopped constraining the offsets and their vertices stopped moving.
+  std::vector<int> released;
 };
 
 /// Volume each tissue encloses (tissue id -> mm^3), from the signed volumes of its boundary.
