@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <future>
+#include <limits>
 #include <optional>
 
 
@@ -116,31 +117,80 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
     const ThicknessSize* t = &*thickness;
     options.max_edge_mm = [t](const Eigen::Vector3d& p) { return (*t)(p); };
   }
-  r.remesh = remesh_surface(r.extraction.surface, on_extracted, options, progress);
-  if (config.surface.restore_volumes && r.remesh->checks.valid()) {
-    auto stage = progress.stage("volume restoration");
-    r.restoration = restore_volumes(r.remesh->surface, r.voxel_volume_mm3);
-    r.remesh->checks = check_surface(r.remesh->surface);
-    stage.note(std::to_string(r.restoration->rounds) + " offset rounds, largest move " +
-               format_double("%.3f", r.restoration->max_offset_mm) + " mm");
-  }
-  {
-    auto stage = progress.stage("remeshed surface quality");
-    r.checks = r.remesh->checks;
-    r.quality = surface_quality(r.remesh->surface);
-    if (r.approach) r.grading = measure_grading(r.remesh->surface, *r.approach);
-  }
-  // The Hausdorff distance only measures: it runs on one thread of its own beside the volume stage
-  // (one thread but for short parts), which reads the surface as it does and changes nothing of
-  // it, and is waited for after it (or, on an exception, by the future's destructor).
-  std::future<SurfaceDistance> hausdorff = std::async(std::launch::async, [&r, &on_extracted] {
-    const SurfaceProjection on_remeshed(r.remesh->surface);
-    return hausdorff_distance(r.remesh->surface, on_remeshed, r.extraction.surface, on_extracted, 1);
-  });
-  mesh_volume(r, config, thickness ? &*thickness : nullptr, progress);
-  {
+  // Remeshing of r's extracted surface, volume restoration, surface quality, then the volume stage
+  // with the Hausdorff distance beside it, into `out` (r itself, or a second try).
+  auto remesh_and_mesh = [&](SurfaceJobResult& out) {
+    out.remesh = remesh_surface(r.extraction.surface, on_extracted, options, progress);
+    if (config.surface.restore_volumes && out.remesh->checks.valid()) {
+      auto stage = progress.stage("volume restoration");
+      out.restoration = restore_volumes(out.remesh->surface, out.voxel_volume_mm3);
+      out.remesh->checks = check_surface(out.remesh->surface);
+      stage.note(std::to_string(out.restoration->rounds) + " offset rounds, largest move " +
+                 format_double("%.3f", out.restoration->max_offset_mm) + " mm");
+    }
+    {
+      auto stage = progress.stage("remeshed surface quality");
+      out.checks = out.remesh->checks;
+      out.quality = surface_quality(out.remesh->surface);
+      out.sharpest_fold_deg = sharpest_fold_deg(out.remesh->surface);
+      if (out.approach) out.grading = measure_grading(out.remesh->surface, *out.approach);
+    }
+    // The Hausdorff distance only measures: it runs on one thread of its own beside the volume
+    // stage (one thread but for short parts), which reads the surface as it does and changes
+    // nothing of it, and is waited for after it (or, on an exception, by the future's destructor).
+    std::future<SurfaceDistance> hausdorff = std::async(std::launch::async, [&out, &r, &on_extracted] {
+      const SurfaceProjection on_remeshed(out.remesh->surface);
+      return hausdorff_distance(out.remesh->surface, on_remeshed, r.extraction.surface, on_extracted, 1);
+    });
+    mesh_volume(out, config, thickness ? &*thickness : nullptr, progress);
     auto stage = progress.stage("Hausdorff distance to the extracted surface (beside the volume mesh)");
-    r.hausdorff = hausdorff.get();
+    out.hausdorff = hausdorff.get();
+  };
+  remesh_and_mesh(r);
+  // TetGen keeps every surface triangle, so a fold of the surface (a fin thinner than the edges,
+  // coarsened and smoothed flat) becomes tets as flat as it; the sliver repair's last resort
+  // lifts most. Where tets under 10 degrees remain, the remeshing runs again with the fold guard
+  // (RemeshOptions::fold_guard) and that mesh is kept if it has fewer of them (or, as many, a
+  // larger smallest angle). Not always: the guard changes the remeshing's path, and on the phantom,
+  // whose meshes all reach 10 degrees, that alone cost Table 1's smallest angle 6 degrees.
+  const auto under_10 = [](const SurfaceJobResult& x) {
+    return x.volume ? x.volume->quality.total.tets_below_10deg : std::numeric_limits<std::size_t>::max();
+  };
+  if (config.volume.mesher == "tetgen" && r.volume && under_10(r) > 0) {
+    FoldRerun rerun;
+    rerun.sharpest_before_deg = r.sharpest_fold_deg;
+    rerun.tets_under_10_before = under_10(r);
+    SurfaceJobResult guarded;
+    {
+      auto stage = progress.stage("again with the fold guard (" + std::to_string(under_10(r)) +
+                                  " tets under 10 deg, sharpest surface fold " +
+                                  format_double("%.2f", r.sharpest_fold_deg) + " deg)");
+      // What remesh_and_mesh reads besides r's extraction.
+      guarded.voxel_volume_mm3 = r.voxel_volume_mm3;
+      guarded.approach = r.approach;
+      options.fold_guard = true;
+      remesh_and_mesh(guarded);
+      rerun.sharpest_after_deg = guarded.sharpest_fold_deg;
+      rerun.tets_under_10_after = under_10(guarded);
+      const bool conforming = guarded.volume && guarded.volume->conformity.conforming();
+      rerun.kept = conforming && (under_10(guarded) < under_10(r) ||
+                                  (under_10(guarded) == under_10(r) && guarded.volume->quality.total.min_dihedral_deg >
+                                                                          r.volume->quality.total.min_dihedral_deg));
+      stage.note(std::to_string(under_10(guarded)) + " tets under 10 deg, sharpest fold " +
+                 format_double("%.2f", guarded.sharpest_fold_deg) + " deg: " + (rerun.kept ? "kept" : "discarded"));
+    }
+    if (rerun.kept) {
+      r.remesh = std::move(guarded.remesh);
+      r.restoration = std::move(guarded.restoration);
+      r.checks = std::move(guarded.checks);
+      r.quality = guarded.quality;
+      r.sharpest_fold_deg = guarded.sharpest_fold_deg;
+      r.grading = std::move(guarded.grading);
+      r.hausdorff = std::move(guarded.hausdorff);
+      r.volume = std::move(guarded.volume);
+      r.volume_refused = std::move(guarded.volume_refused);
+    }
+    r.fold_rerun = rerun;
   }
   return r;
 }

@@ -44,10 +44,20 @@ struct VolumeStage {
   std::vector<VolumeDeviation> volume_deviations;  ///< tissues outside checks.volume_tolerance_percent
 };
 
+/// The remeshing and the volume stage run again with the fold guard (volume.mesher tetgen, when
+/// tets under 10 degrees remained).
+struct FoldRerun {
+  double sharpest_before_deg = 180.0;  ///< sharpest_fold_deg of the first surface
+  double sharpest_after_deg = 180.0;   ///< and of the guarded one
+  std::size_t tets_under_10_before = 0, tets_under_10_after = 0;
+  bool kept = false;  ///< the guarded result replaced the first (conforming, fewer tets under 10 deg)
+};
+
 struct SurfaceJobResult {
   SurfaceExtraction extraction;             ///< extracted surface, repair, vertex counts and its checks
   SurfaceQuality extracted_quality;         ///< Table 1 figures of the extracted surface
   std::optional<RemeshResult> remesh;       ///< when the config asks for remeshing
+  std::optional<FoldRerun> fold_rerun;      ///< when the remeshing ran again with the fold guard
   /// surface.thickness_edge_ratio the remeshing ran with (0: sizes not bounded by thickness).
   double thickness_edge_ratio = 0.0;
   std::optional<VolumeRestoration> restoration;  ///< with surface.restore_volumes (remesh->surface moved)
@@ -56,6 +66,7 @@ struct SurfaceJobResult {
   std::optional<ApproachGrading> grading;   ///< measured on surface() when approach.enabled
   SurfaceCheckReport checks;                ///< of surface()
   SurfaceQuality quality;                   ///< Table 1 figures of surface()
+  double sharpest_fold_deg = 180.0;         ///< sharpest_fold_deg(surface()), degrees
   std::map<int, double> voxel_volume_mm3;   ///< tissue id -> voxel volume of the tissue
   std::optional<VolumeStage> volume;        ///< the tet mesh, when the surface passes its checks
   /// Why no tet mesh was made although the surface passed its checks (empty otherwise): a surface

@@ -149,6 +149,12 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                                            {"vertices_held", r.restoration->frozen_vertices},
                                            {"stopped_to_stay_intersection_free", r.restoration->stopped_early},
                                            {"tissues_released", released_names(*r.restoration, s.tissue_names)}};
+    if (r.fold_rerun)
+      j["remesh"]["fold_guard_rerun"] = {{"sharpest_fold_before_deg", r.fold_rerun->sharpest_before_deg},
+                                         {"sharpest_fold_guarded_deg", r.fold_rerun->sharpest_after_deg},
+                                         {"tets_under_10deg_before", r.fold_rerun->tets_under_10_before},
+                                         {"tets_under_10deg_guarded", r.fold_rerun->tets_under_10_after},
+                                         {"kept", r.fold_rerun->kept}};
   }
   if (r.approach) {
     const Eigen::Vector3d &e = r.approach->entry(), &c = r.approach->target_centroid();
@@ -164,6 +170,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                                    {"inside_over_outside", r.grading->ratio()}};
   }
   j["table1_quality"] = table1_json(r.quality);
+  j["sharpest_fold_deg"] = r.sharpest_fold_deg;
   nlohmann::json tissues = nlohmann::json::array();
   for (const auto& t : r.checks.tissues)
     tissues.push_back({{"tissue", t.name},
@@ -279,8 +286,16 @@ std::string surface_job_text(const SurfaceJobResult& r) {
   }
   o << "\nTable 1 (triangle quality)    avg min angle [deg]  min angle [deg]  P30 [%]   Q_av    Q_min   mean edge [mm]\n";
   if (r.remesh) o << table1_row("extracted", r.extracted_quality);
-  o << table1_row(r.remesh ? "remeshed" : "extracted", r.quality) << "\n";
-  o << "surface checks      vertices  triangles  closed+oriented+manifold  intersecting pairs  volume [mm^3]  voxel volume [mm^3]  error [%]\n";
+  o << table1_row(r.remesh ? "remeshed" : "extracted", r.quality);
+  o << "sharpest fold (two triangles of one patch across an edge; 180 = flat): " << fmt("%.2f", r.sharpest_fold_deg)
+    << " deg\n";
+  if (r.fold_rerun)
+    o << "remeshed and meshed again with the fold guard: the first mesh had "
+      << r.fold_rerun->tets_under_10_before << " tets under 10 deg (sharpest surface fold "
+      << fmt("%.2f", r.fold_rerun->sharpest_before_deg) << " deg), the guarded one "
+      << r.fold_rerun->tets_under_10_after << " (" << fmt("%.2f", r.fold_rerun->sharpest_after_deg) << " deg): "
+      << (r.fold_rerun->kept ? "kept" : "discarded") << "\n";
+  o << "\nsurface checks      vertices  triangles  closed+oriented+manifold  intersecting pairs  volume [mm^3]  voxel volume [mm^3]  error [%]\n";
   for (const auto& t : r.checks.tissues) {
     char line[256];
     std::snprintf(line, sizeof line, "  %-16s  %8zu  %9zu  %24s  %18lld  %13.1f  %19.1f  %9.3f\n", t.name.c_str(),

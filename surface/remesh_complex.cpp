@@ -60,6 +60,7 @@ RemeshComplex::RemeshComplex(const TriSurface& in, const SurfaceProjection& proj
       region_(widened_bounds(in)),
       cap_(kCapFactor, kCapGradation, region_),
       max_deviation_(options.max_deviation_mm),
+      fold_guard_(options.fold_guard),
       threads_(std::clamp(options.threads, 1, 2)) {
   x_ = in.points;
   reference_ = in.points;
@@ -287,6 +288,7 @@ bool RemeshComplex::keeps_represented(int v, const Vector3d& p, std::vector<std:
 
 RemeshComplex::NewTriangle RemeshComplex::moved_triangle(int t, int v, const Vector3d& p, int id) const {
   NewTriangle n;
+  n.patch = patch_[t];
   for (int i = 0; i < 3; ++i) {
     const bool moved = tri_[t][i] == v;
     n.v[i] = moved ? id : tri_[t][i];
@@ -301,6 +303,55 @@ void RemeshComplex::collect_moved(const std::vector<int>& tris, const std::vecto
   created.clear();
   for (int t : tris)
     if (std::find(skip.begin(), skip.end(), t) == skip.end()) created.push_back(moved_triangle(t, v, p, id));
+}
+
+double RemeshComplex::fold_cos_before(const std::vector<int>& replaced) const {
+  double worst = 1.0;
+  for (int t : replaced) {
+    const Vector3d n = normal(t);
+    for (int i = 0; i < 3; ++i) {
+      const int u = tri_[t][i], w = tri_[t][(i + 1) % 3];
+      for (int o : vt_[u])
+        if (o != t && tri_alive_[o] && patch_[o] == patch_[t] && has(o, w)) worst = std::min(worst, n.dot(normal(o)));
+    }
+  }
+  return worst;
+}
+
+double RemeshComplex::fold_cos_after(const std::vector<int>& replaced) {
+  const std::vector<NewTriangle>& created = scratch().created;
+  const int known = static_cast<int>(vt_.size());  // a split's new vertex has no triangle list yet
+  auto holds = [](const NewTriangle& c, int x) { return c.v[0] == x || c.v[1] == x || c.v[2] == x; };
+  double worst = 1.0;
+  for (std::size_t i = 0; i < created.size(); ++i) {
+    const NewTriangle& c = created[i];
+    const Vector3d a = area_vector(c.p[0], c.p[1], c.p[2]);
+    if (!(a.norm() > 0.0)) continue;  // degenerate: the normal guards refuse it
+    const Vector3d n = a.normalized();
+    for (int e = 0; e < 3; ++e) {
+      const int u = c.v[e], w = c.v[(e + 1) % 3];
+      for (std::size_t j = 0; j < created.size(); ++j) {
+        const NewTriangle& d = created[j];
+        if (j == i || d.patch != c.patch || !holds(d, u) || !holds(d, w)) continue;
+        const Vector3d b = area_vector(d.p[0], d.p[1], d.p[2]);
+        if (b.norm() > 0.0) worst = std::min(worst, n.dot(b.normalized()));
+      }
+      const int from = u < known ? u : w;
+      if (from >= known) continue;
+      for (int o : vt_[from]) {
+        if (!tri_alive_[o] || patch_[o] != c.patch || !has(o, from == u ? w : u)) continue;
+        if (std::find(replaced.begin(), replaced.end(), o) != replaced.end()) continue;
+        worst = std::min(worst, n.dot(normal(o)));
+      }
+    }
+  }
+  return worst;
+}
+
+bool RemeshComplex::would_fold(const std::vector<int>& replaced) {
+  if (!fold_guard_) return false;
+  const double after = fold_cos_after(replaced);
+  return after < kFoldCos && after < fold_cos_before(replaced);
 }
 
 double RemeshComplex::ring_min_angle(int v, const Vector3d& p) const {
@@ -352,7 +403,7 @@ bool RemeshComplex::try_move(int v, const Vector3d& p, bool handoff) {
   std::vector<std::array<int, 2>> handed;
   if (!move_keeps_normals(v, p, vt_[v], {}) || !keeps_represented(v, p, handoff ? &handed : nullptr)) return false;
   collect_moved(vt_[v], {}, v, p, v);
-  if (would_intersect(vt_[v])) return false;
+  if (would_fold(vt_[v]) || would_intersect(vt_[v])) return false;
   for (const auto& [r, w] : handed) {
     represents_[v].erase(std::find(represents_[v].begin(), represents_[v].end(), r));
     represents_[w].push_back(r);

@@ -23,7 +23,9 @@
 // triangle. Validity: an operation is refused when one of the triangles it creates would intersect
 // another one or any live triangle of the complex (exact predicates, surface/triangle_intersection.h;
 // candidates from a grid of triangle boxes, surface/triangle_grid.h), so an intersection-free input
-// stays intersection free at any budget. Shape: each vertex carries the input vertices collapsed
+// stays intersection free at any budget. With options.fold_guard, an operation is also refused when
+// two triangles of one patch across an edge would turn from each other by more than 154 degrees
+// (kFoldCos) and by more than the worst such pair among the triangles it replaces. Shape: each vertex carries the input vertices collapsed
 // into it, and a collapse or relaxation move is refused when one of them would end up farther than
 // the approximation bound (max(max_deviation_mm, L/4), times scale_deviation()'s factor) from
 // the triangles around it (an angle- or quality-smoothing move may instead hand it to a
@@ -225,7 +227,22 @@ class RemeshComplex {
   struct NewTriangle {
     std::array<int, 3> v;
     TrianglePoints p;
+    int patch = -1;  ///< the patch of the triangle it replaces
   };
+  /// With options.fold_guard, two triangles of one patch across an edge may turn from each other
+  /// by at most acos(kFoldCos) = 154 degrees (the split's kSplitFoldCos), or by no more than the
+  /// worst such pair among the triangles an operation replaces: the extracted surface has no
+  /// wedge under 30 degrees, but coarsening a fold or fin thinner than the edges, and the angle
+  /// smoothing, flattened them to 0.1 degrees, and a tet filling such a wedge is as flat.
+  static constexpr double kFoldCos = -0.9;
+  /// Smallest cosine between the normals of two triangles of one patch that share an edge: over
+  /// the edges of created_ after the operation (against each other and against the live
+  /// triangles not in `replaced`), or over the edges of the live triangles `replaced` before it.
+  double fold_cos_after(const std::vector<int>& replaced);
+  double fold_cos_before(const std::vector<int>& replaced) const;
+  /// options.fold_guard and the operation replacing `replaced` by created_ folds beyond kFoldCos
+  /// and beyond what it replaces.
+  bool would_fold(const std::vector<int>& replaced);
   /// Live triangles with an angle under `min_angle_rad`, in index order.
   std::vector<int> poor_triangles(double min_angle_rad) const;
   /// Position i in q of its longest (else shortest) edge (q[i], q[(i + 1) % 3]); ties: the first.
@@ -347,6 +364,7 @@ class RemeshComplex {
   double max_deviation_ = 0.0;
   double slack_ = 1.0;  ///< deviation() multiplier, raised by match_count when stuck
   double deviation_scale_ = 1.0;  ///< deviation() multiplier set by scale_deviation()
+  bool fold_guard_ = false;       ///< options.fold_guard
   std::vector<Vector3d> reference_;             ///< the input vertices
   std::vector<std::vector<int>> represents_;    ///< per vertex: input vertices collapsed into it
   TriangleGrid grid_;

@@ -61,7 +61,7 @@ bool RemeshComplex::split(int a, int b) {
       if (!(nk.norm() > 0.0) || nk.normalized().dot(n) < kSplitFoldCos) return false;
     }
   }
-  if (would_intersect(ts)) return false;
+  if (would_fold(ts) || would_intersect(ts)) return false;
   if (curve < 0) {
     kind_.push_back(Kind::Surface);
     owner_.push_back(patch_[ts[0]]);
@@ -175,7 +175,8 @@ bool RemeshComplex::try_collapse(int a, int b, double max_relative) {
     }
   }
   collect_moved(vt_[a], ts, a, x_[b], b);
-  if (would_intersect(vt_[a])) {
+  // The fold guard reads the triangles beyond the two rings, which may change: try again too.
+  if (would_fold(vt_[a]) || would_intersect(vt_[a])) {
     if (tracking_rings_) ring_changed_[a] = ring_changed_[b] = 1;  // the obstacle may go: try again
     return false;
   }
@@ -273,8 +274,8 @@ bool RemeshComplex::try_flip(int a_, int b_, FlipQuad* flipped) {
   if (!flip_passes_local_tests(a_, b_, q)) return false;
   const int a = q.a, b = q.b, c = q.c, d = q.d, t1 = q.t1, t2 = q.t2;
   const Vector3d &pa = x_[a], &pb = x_[b], &pc = x_[c], &pd = x_[d];
-  scratch().created = {{{a, d, c}, {pa, pd, pc}}, {{d, b, c}, {pd, pb, pc}}};
-  if (would_intersect({t1, t2})) return false;
+  scratch().created = {{{a, d, c}, {pa, pd, pc}, patch_[t1]}, {{d, b, c}, {pd, pb, pc}, patch_[t1]}};
+  if (would_fold({t1, t2}) || would_intersect({t1, t2})) return false;
   tri_[t1] = {a, d, c};
   tri_[t2] = {d, b, c};
   index_triangle(t1);

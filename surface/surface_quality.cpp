@@ -3,6 +3,8 @@
 #include "surface/triangle_geometry.h"
 
 #include <algorithm>
+#include <array>
+#include <vector>
 #include <cmath>
 
 namespace tissuemesh {
@@ -34,6 +36,44 @@ SurfaceQuality surface_quality(const TriSurface& s) {
   q.q_average = sum_q / n;
   q.mean_edge_mm = sum_edge / n;
   return q;
+}
+
+double sharpest_fold_deg(const TriSurface& s) {
+  struct EdgeUse {
+    std::array<int, 2> key;
+    int triangle;
+  };
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * s.triangles.size());
+  for (std::size_t t = 0; t < s.triangles.size(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = s.triangles[t][e], b = s.triangles[t][(e + 1) % 3];
+      uses.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t)});
+    }
+  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+    return x.key < y.key || (x.key == y.key && x.triangle < y.triangle);
+  });
+  auto normal = [&](int t) {
+    const auto& w = s.triangles[t];
+    return area_vector(s.points[w[0]], s.points[w[1]], s.points[w[2]]);
+  };
+  double sharpest = 180.0;
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+    const int a = uses[i].triangle, b = j - i == 2 ? uses[i + 1].triangle : -1;
+    if (b >= 0 && s.labels[a] == s.labels[b]) {
+      const Eigen::Vector3d na = normal(a), nb = normal(b);
+      if (na.norm() > 0.0 && nb.norm() > 0.0) {
+        // Triangles of one patch are oriented alike: coplanar normals agree (180 degrees between
+        // the triangles), a flat fold turns one normal over (0 degrees).
+        const double turn = std::atan2(na.cross(nb).norm(), na.dot(nb));
+        sharpest = std::min(sharpest, 180.0 - turn * (180.0 / M_PI));
+      }
+    }
+    i = j;
+  }
+  return sharpest;
 }
 
 bool improves_table1_minima(const SurfaceQuality& before, const SurfaceQuality& after) {

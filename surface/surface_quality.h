@@ -30,6 +30,12 @@ struct SurfaceQuality {
 /// triangles count with angle 0 and Q = 0.
 SurfaceQuality surface_quality(const TriSurface& surface);
 
+/// Sharpest fold of `surface`, degrees: the smallest angle between two triangles of one patch (the
+/// same region pair) across an edge that only they share, 180 where they are coplanar, 0 where one
+/// lies folded flat onto the other. A volume mesher that keeps every surface triangle (TetGen -Y)
+/// fills such a wedge with tets no less flat. 180 when there is no such edge.
+double sharpest_fold_deg(const TriSurface& surface);
+
 /// True when `after` is no worse than `before` in smallest angle and Q_min, and better in one of
 /// them or in P30 (the surface remesher keeps a repair only then, surface/surface_remesh.h).
 bool improves_table1_minima(const SurfaceQuality& before, const SurfaceQuality& after);

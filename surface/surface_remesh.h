@@ -62,6 +62,10 @@ struct RemeshOptions {
   /// Repair attempts at most (>= 1; header comment): the first with the approximation bound as
   /// it is, each later one 1.5 times looser near the poor triangles.
   int repair_attempts = 4;
+  /// Refuse every operation that would fold two triangles of one patch flat against each other
+  /// (RemeshComplex::kFoldCos) further than their neighbourhood already was: a volume mesher that
+  /// keeps the surface (TetGen -Y) must fill the wedge between them with tets at least as flat.
+  bool fold_guard = false;
   /// Threads of the partitioned sweeps (surface/remesh_complex.h): 2, or 1 to run the two halves
   /// one after the other. The result is the same either way.
   int threads = 2;
