@@ -8,6 +8,8 @@
 // ray into the tissue, so it is strictly inside whatever the tissue's thickness.
 #include "volume/tetgen_mesher.h"
 
+#include "volume/unseeded_cells.h"
+
 #include "core/errors.h"
 #include "core/isolated_run.h"
 #include "core/union_find.h"
@@ -291,8 +293,9 @@ TetgenResult tetgen_mesh(const TriSurface& surface, const TetgenParams& params, 
       std::swap(tet[2], tet[3]);
     mesh.tets[t] = tet;
     mesh.tissue_ids[t] = out.ids[t];
-    keep[t] = out.ids[t] >= 1 && out.ids[t] <= n_tissues;
   }
+  result.unseeded = label_unseeded_cells(mesh.points, mesh.tets, surface, mesh.tissue_ids);
+  for (int t = 0; t < n_tets; ++t) keep[t] = mesh.tissue_ids[t] >= 1 && mesh.tissue_ids[t] <= n_tissues;
   keep_tets(mesh, keep);
   std::vector<char> used(surface.points.size(), 0);
   for (const auto& tri : surface.triangles)

@@ -13,7 +13,9 @@
 //
 // Output: the boundary and every interface are exactly the input triangles, so the tet mesh and
 // the surface enclose the same volumes; the volume bound holds inside a tissue but not for every
-// tet touching the surface. Tets in no region (cavities of "outside") are dropped. TetGen runs
+// tet touching the surface. Tets in no region take the region on their side of the surface
+// triangles around them (volume/unseeded_cells.h): a cavity of "outside" is dropped, a cell
+// enclosed by a fold of one tissue's boundary is kept as that tissue. TetGen runs
 // in a child process (core/isolated_run.h): its failures (self-intersecting or degenerate input,
 // which a valid surface does not have, or facets nearly coplanar within its tolerance) become
 // MeshingError with the meaning of TetGen's error code, and so does a crash of TetGen, which
@@ -24,6 +26,7 @@
 #include "core/tet_mesh.h"
 #include "core/tri_surface.h"
 #include "volume/tetgen_params.h"
+#include "volume/unseeded_cells.h"
 
 #include <map>
 #include <string>
@@ -35,6 +38,7 @@ struct TetgenResult {
   TetMesh mesh;
   std::string switches;  ///< the switches TetGen ran with, for the report
   std::size_t steiner_points = 0;  ///< nodes TetGen added (mesh nodes - surface vertices used)
+  UnseededCells unseeded;          ///< tets in no region given the tissue around them
 };
 
 /// Meshes `surface` (see the header comment). `point_radius_mm`, when not empty, is the largest
