@@ -3,7 +3,6 @@
 // triangles of one patch across an edge; coarsening layers that fold faster than the edges can
 // follow flattens some of them to a fraction of a degree, and the guard keeps every fold of the
 // remeshed surface at 25.8 degrees or more (the 154-degree turn of RemeshComplex::kFoldCos).
-#include "image/folded_layers.h"
 #include "surface/surface_checks.h"
 #include "surface/surface_projection.h"
 #include "surface/surface_quality.h"
@@ -54,11 +53,7 @@ TEST(SurfaceFolds, SharpestFoldIsTheAngleBetweenTwoTrianglesOfOnePatch) {
 // without the guard some folds end up flat; with it none is sharper than the guard's limit, and
 // the surface is valid and meets its budget.
 TEST(SurfaceFolds, TheFoldGuardKeepsFoldsOpenOnLayersFoldingFasterThanTheEdges) {
-  FoldedLayersParams folds;
-  folds.size_mm = 60.0;  // 60^3 voxels of 1 mm
-  folds.layer_thickness_mm = {3.5, 3.5, 3.5, 3.5};
-  folds.deep_radius_mm = 3.0;
-  const LabelImage img = make_folded_layers(folds);
+  const LabelImage img = folds_every_three_voxels();
   const TriSurface input = extract(img, 7).surface;
   ASSERT_GT(sharpest_fold_deg(input), 30.0);  // the voxel surface, relaxed, has no sharp fold
   const SurfaceProjection on_input(input);

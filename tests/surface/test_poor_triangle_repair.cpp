@@ -3,7 +3,6 @@
 // blocks (capping the size around poor triangles, focused sweeps, removal of vertices of three
 // triangles), its repeated attempts with a looser approximation bound, and the final quality
 // smoothing.
-#include "image/folded_layers.h"
 #include "surface/remesh_complex.h"
 #include "surface/surface_checks.h"
 #include "surface/surface_distance.h"
@@ -294,11 +293,7 @@ TEST(SurfaceRemesh, RepeatedRepairWithALooserBoundWidensTrianglesOnFoldsNearTheE
   // with the bound 1.5 times looser each, may cut across folds the edges cannot resolve. Measured
   // when written: one attempt 20.66 deg, Q_min 0.318, P30 0.090 %, Hausdorff 1.66 mm; the default
   // 28.21 deg, 0.466, 0.004 %, 1.58 mm (its second attempt kept, the loop then stops above 26.5).
-  FoldedLayersParams folds;
-  folds.size_mm = 60.0;  // 60^3 voxels of 1 mm
-  folds.layer_thickness_mm = {3.5, 3.5, 3.5, 3.5};
-  folds.deep_radius_mm = 3.0;
-  const LabelImage img = make_folded_layers(folds);
+  const LabelImage img = folds_every_three_voxels();
   const TriSurface input = extract(img, 7).surface;
   const SurfaceProjection on_input(input);
   RemeshOptions options;

@@ -37,6 +37,16 @@ LabelImage layered_cube() {
   return img;
 }
 
+DirectMeshParams coarse();
+
+// layered_cube() meshed at the coarse sizes without the volume restoration.
+DirectMeshResult layered_cube_unrestored() {
+  DirectMeshParams params = coarse();
+  params.restore_volumes = false;
+  Progress progress;
+  return mesh_labels_direct(layered_cube(), {"a", "b", "c"}, params, progress);
+}
+
 DirectMeshParams coarse() {
   DirectMeshParams p;
   p.facet_size_mm = 2.0;
@@ -111,11 +121,7 @@ TEST(DirectMesher, TissuesTouchingTheImageBorderEndAtTheBorderVoxelCentres) {
   // ends at the centres of the border voxels, half a voxel inside the voxel faces. Before the
   // volume restoration the mesh fills exactly that box: slab thicknesses 3.5, 4 and 3.5 voxels,
   // 19 x 15 voxels across.
-  const LabelImage img = layered_cube();
-  DirectMeshParams params = coarse();
-  params.restore_volumes = false;
-  Progress progress;
-  const auto r = mesh_labels_direct(img, {"a", "b", "c"}, params, progress);
+  const auto r = layered_cube_unrestored();
   EXPECT_FALSE(r.restoration);
   const ConformityReport c = check_conformity(r.mesh);
   EXPECT_TRUE(c.conforming());
@@ -136,12 +142,9 @@ TEST(DirectMesher, TissuesTouchingTheImageBorderEndAtTheBorderVoxelCentres) {
 // floor. The nodes on the box's edges stay (the surface bends by 90 degrees there), and on an
 // image this small they hold the last few tenths of a per cent.
 TEST(DirectMesher, RestorationFillsTheVoxelsCutByTheImageBorder) {
-  const LabelImage img = layered_cube();
-  DirectMeshParams params = coarse();
-  params.restore_volumes = false;
+  const auto clipped = layered_cube_unrestored();
   Progress progress;
-  const auto clipped = mesh_labels_direct(img, {"a", "b", "c"}, params, progress);
-  const auto r = mesh_labels_direct(img, {"a", "b", "c"}, coarse(), progress);
+  const auto r = mesh_labels_direct(layered_cube(), {"a", "b", "c"}, coarse(), progress);
   ASSERT_TRUE(r.restoration);
   EXPECT_EQ(r.mesh.tets, clipped.mesh.tets);  // only nodes move
   const QualityReport before = compute_quality(clipped.mesh), after = compute_quality(r.mesh);
