@@ -56,10 +56,13 @@ class Fields {
   [[noreturn]] void fail(const std::string& what) const { throw InputError(path_ + ": " + what); }
 
   void set(const std::string& name, const std::string& value) { values_[key(name)] = trim(value); }
-  /// As set, but a field given before (in any spelling that matches) is an error: NRRD forbids
-  /// it, and VTK's reader would read the fields in order where this parser keeps the last.
-  void set_once(const std::string& name, const std::string& value) {
-    if (values_.count(key(name))) fail("NRRD field '" + name + "' is given more than once");
+  /// As set, but a field given before (in any spelling that matches) is an error naming the
+  /// `format`: NRRD forbids it, and other readers (VTK's, MetaIO) take the first where this parser
+  /// would keep the last.
+  void set_once(const char* format, const std::string& name, const std::string& value) {
+    if (values_.count(key(name))) {
+      fail(std::string(format) + " field '" + trim(name) + "' is given more than once");
+    }
     set(name, value);
   }
 
@@ -324,7 +327,7 @@ ImageHeader read_nrrd_header(const std::string& path) {
     const std::size_t colon = line.find(": "), key_value = line.find(":=");
     if (ended || line[0] == '#' || key_value < colon) continue;  // comment or "key:=value"
     if (colon == std::string::npos) f.fail("NRRD header line '" + line + "' is not 'field: value'");
-    f.set_once(line.substr(0, colon), line.substr(colon + 2));
+    f.set_once("NRRD", line.substr(0, colon), line.substr(colon + 2));
   }
 
   ImageHeader h;
@@ -428,9 +431,9 @@ ImageHeader read_nrrd_header(const std::string& path) {
 
 // ----------------------------------------------------------------------------------- MetaImage
 
-// MetaIO (vtkMetaImageReader) copies a field's name and text values such as Name, Comment and
-// ObjectSubType into 255-byte buffers without a bound, so a longer one overruns them (glibc's
-// fortify check then aborts the process). Real headers stay far below: nine full-precision numbers
+// MetaIO, the format's reference reader (ITK, VTK, 3D Slicer), copies a field's name and text
+// values such as Name, Comment and ObjectSubType into 255-byte buffers without a bound, so a longer
+// one overruns them; such a file is refused rather than passed on in a mesh's provenance. Real headers stay far below: nine full-precision numbers
 // of a TransformMatrix take about 190 characters. ElementDataFile is held in a string and may be
 // longer (a deep path).
 constexpr std::size_t kMetaioMaxText = 254;
@@ -458,7 +461,7 @@ ImageHeader read_metaimage_header(const std::string& path) {
     if (eq == std::string::npos)
       f.fail("MetaImage header line '" + line + "' is not 'Key = Value'");
     require_metaio_field_size(f, line.substr(0, eq), line.substr(eq + 1));
-    f.set(line.substr(0, eq), line.substr(eq + 1));
+    f.set_once("MetaImage", line.substr(0, eq), line.substr(eq + 1));
     data_file_found = f.find({"ElementDataFile"}) != nullptr;
   }
   if (!data_file_found) f.fail("MetaImage header has no ElementDataFile (truncated or corrupt)");

@@ -20,8 +20,9 @@
 // ElementNumberOfChannels, ElementSpacing, Offset (a.k.a. Position, Origin), TransformMatrix
 // (a.k.a. Rotation, Orientation), BinaryDataByteOrderMSB (a.k.a. ElementByteOrderMSB),
 // CompressedData, CompressedDataSize, HeaderSize, ElementDataFile (LOCAL or one file name; must be
-// the last field). BinaryData = False (ASCII voxels) is refused. MetaImage physical space is LPS
-// (ITK's convention); AnatomicalOrientation is informational only and ignored, as ITK does.
+// the last field); a field given twice is refused. BinaryData = False (ASCII voxels) is refused.
+// MetaImage physical space is LPS (ITK's convention); AnatomicalOrientation is informational
+// only and ignored, as ITK does.
 //
 // Every function throws InputError naming the file and the field at fault for a missing, garbled or
 // unsupported header. Nothing is printed.

@@ -10,7 +10,6 @@
 #include <vtkErrorCode.h>
 #include <vtkExecutive.h>
 #include <vtkImageData.h>
-#include <vtkMetaImageReader.h>
 #include <vtkNIFTIImageHeader.h>
 #include <vtkNIFTIImageReader.h>
 #include <vtkNew.h>
@@ -386,15 +385,29 @@ LabelImage read_nrrd(const std::string& path) {
 
 // ---------------------------------------------------------------------------------- MetaImage
 
+// The voxel bytes are read by the toolkit from what its header parser found, not by
+// vtkMetaImageReader (see read_voxel_bytes).
 LabelImage read_metaimage(const std::string& path) {
   ImageHeader h = read_metaimage_header(path);
   require_label_voxels(h.type, h.components, path);
   require_read_memory(h.geometry.dims, voxel_type_bytes(h.type), path);
   require_data_present(h, path);
-  vtkNew<vtkMetaImageReader> reader;
-  reader->SetFileName(path.c_str());
-  ReaderRun(reader, path, "MetaImage").data();
-  labels_from_vtk(reader->GetOutput(), false, h.geometry, path);
+  const std::vector<unsigned char> bytes = read_voxel_bytes(h, path);
+  const auto labels = [&](auto type_tag) {
+    using T = decltype(type_tag);
+    copy_labels(reinterpret_cast<const T*>(bytes.data()), false, h.geometry, path);
+  };
+  switch (h.type) {
+    case VoxelType::kInt8: labels(std::int8_t{}); break;
+    case VoxelType::kUInt8: labels(std::uint8_t{}); break;
+    case VoxelType::kInt16: labels(std::int16_t{}); break;
+    case VoxelType::kUInt16: labels(std::uint16_t{}); break;
+    case VoxelType::kInt32: labels(std::int32_t{}); break;
+    case VoxelType::kUInt32: labels(std::uint32_t{}); break;
+    case VoxelType::kInt64: labels(std::int64_t{}); break;
+    case VoxelType::kUInt64: labels(std::uint64_t{}); break;
+    default: throw InputError(path + ": voxel type " + voxel_type_name(h.type) + " is not a label type");
+  }
   return h.geometry;
 }
 

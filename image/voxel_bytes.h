@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace tissuemesh {
 
@@ -23,6 +24,12 @@ std::uintmax_t data_file_size(const std::string& file, const std::string& path);
 /// discarded; memory use is constant.
 bool stream_delivers(const std::string& file, std::uintmax_t offset, std::uintmax_t length,
                      std::size_t expected);
+
+/// The `header.data_bytes()` voxel bytes of a MetaImage or NRRD header whose data
+/// require_data_present has accepted: read raw or inflated (zlib or gzip) from `header.data_file`
+/// at its offset, multi-byte values put in this machine's byte order. Throws InputError naming
+/// `path` when the file changed since the check and no longer delivers them.
+std::vector<unsigned char> read_voxel_bytes(const ImageHeader& header, const std::string& path);
 
 /// Requires the voxel bytes an NRRD or MetaImage header (image/image_header.h) promises: the data
 /// file exists, holds the declared raw bytes after the header or offset, and a compressed stream

@@ -21,6 +21,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -456,6 +457,10 @@ TEST(ImageIo, RefusesBadInputNamingTheFile) {
   const std::string valid = "type: uchar\nsizes: 7 5 4\nencoding: raw\n\n" + voxel_bytes<std::uint8_t>(volume);
   write_file(dir / "twice.nrrd", "NRRD0004\nDimension: 77777777777777\ndimension: 3\n" + valid);
   expect_refused(dir / "twice.nrrd", {"'dimension'", "more than once"});
+  write_file(dir / "twice.mha", "ObjectType = Image\nNDims = 77777777777777 3\nNDims = 3\n"
+                                "DimSize = 7 5 4\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n" +
+                                    voxel_bytes<std::uint8_t>(volume));
+  expect_refused(dir / "twice.mha", {"'NDims'", "more than once"});
   write_file(dir / "space_dimension.nrrd",
              "NRRD0004\ndimension: 3\nspace: left-posterior-superior\nspace dimension: 77777777\n" + valid);
   expect_refused(dir / "space_dimension.nrrd", {"space dimension", "not 3"});
@@ -470,6 +475,69 @@ TEST(ImageIo, RefusesBadInputNamingTheFile) {
   expect_refused(dir / "missing.nii.gz", {"no such file"});
   write_file(dir / "labels.png", noise);
   expect_refused(dir / "labels.png", {".nii", ".nii.gz", ".nrrd", ".nhdr", ".mha", ".mhd"});
+}
+
+// The MetaImage voxel bytes are read by the toolkit: every integer type, either byte order, raw
+// or zlib, attached, detached at an offset, and HeaderSize = -1 (the data are the file's last
+// bytes) give the same labels.
+TEST(ImageIo, MetaImageVoxelsInEveryLayout) {
+  const fs::path dir = test::scratch_dir();
+  const LabelImage volume = make_noisy_volume();
+  const auto swapped = [](std::string bytes, std::size_t size) {
+    for (std::size_t i = 0; i + size <= bytes.size(); i += size) {
+      std::reverse(bytes.begin() + static_cast<std::ptrdiff_t>(i),
+                   bytes.begin() + static_cast<std::ptrdiff_t>(i + size));
+    }
+    return bytes;
+  };
+  struct Case {
+    const char* type;
+    std::string bytes;
+    std::size_t size;
+  };
+  const std::vector<Case> cases = {{"MET_UCHAR", voxel_bytes<std::uint8_t>(volume), 1},
+                                   {"MET_SHORT", voxel_bytes<std::int16_t>(volume), 2},
+                                   {"MET_UINT", voxel_bytes<std::uint32_t>(volume), 4},
+                                   {"MET_LONG_LONG", voxel_bytes<std::int64_t>(volume), 8}};
+  for (const Case& c : cases) {
+    for (const bool other_order : {false, true}) {
+      for (const bool compress : {false, true}) {
+        const std::string name = std::string(c.type) + (other_order ? "_swapped" : "") +
+                                 (compress ? "_zlib" : "");
+        SCOPED_TRACE(name);
+        std::string data = other_order ? swapped(c.bytes, c.size) : c.bytes;
+        if (compress) {
+          std::string packed(compressBound(data.size()), '\0');
+          uLongf size = packed.size();
+          ASSERT_EQ(compress2(reinterpret_cast<Bytef*>(packed.data()), &size,
+                              reinterpret_cast<const Bytef*>(data.data()), data.size(), 6),
+                    Z_OK);
+          data = packed.substr(0, size);
+        }
+        std::ostringstream h;
+        h << "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = "
+          << ((host_is_big_endian() != other_order) ? "True" : "False")
+          << "\nCompressedData = " << (compress ? "True" : "False") << "\n";
+        if (compress) h << "CompressedDataSize = " << data.size() << "\n";
+        h << "ElementSpacing = " << numbers(volume.spacing, " ") << "\nOffset = "
+          << numbers(volume.origin, " ") << "\nDimSize = " << volume.dims[0] << " "
+          << volume.dims[1] << " " << volume.dims[2] << "\nElementType = " << c.type;
+        write_file(dir / (name + ".mha"), h.str() + "\nElementDataFile = LOCAL\n" + data);
+        // Detached, behind 37 bytes of another header; once at HeaderSize 37, once at -1.
+        write_file(dir / (name + ".raw"), std::string(37, 'x') + data);
+        write_file(dir / (name + ".mhd"),
+                   h.str() + "\nHeaderSize = 37\nElementDataFile = " + name + ".raw\n");
+        write_file(dir / (name + "_last.mhd"),
+                   h.str() + "\nHeaderSize = -1\nElementDataFile = " + name + ".raw\n");
+        for (const std::string file : {name + ".mha", name + ".mhd", name + "_last.mhd"}) {
+          SCOPED_TRACE(file);
+          const LabelImage image = read_label_image((dir / file).string());
+          EXPECT_EQ(image.labels, volume.labels);
+          EXPECT_TRUE(image.spacing.isApprox(volume.spacing, 1e-12));
+        }
+      }
+    }
+  }
 }
 
 TEST(ImageIo, WriteNiftiRoundTripIsExactAndDeterministic) {
