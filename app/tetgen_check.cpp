@@ -228,6 +228,8 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
   text << "  conforming: MESH " << (c_mesh.conforming() ? "yes" : "NO") << ", TetGen "
        << (c_tg.conforming() ? "yes" : "NO") << "; largest tissue volume difference "
        << format_double("%.4f", check.max_volume_difference_percent) << " %\n";
+  const std::string unseeded = unseeded_warning(tg.unseeded);
+  if (!unseeded.empty()) text << "WARNING: TetGen's mesh: " << unseeded << "\n";
   if (!check.both_converged)
     text << "WARNING: a built-in solve did not converge (MESH: " << s_mesh.solve.message << "; TetGen: "
          << s_tg.solve.message << ")\n";
@@ -240,6 +242,8 @@ TetgenCheck tetgen_check_into(const TetMesh& mesh, const std::string& target, co
                       {"switches", tg.switches},
                       {"sizing", sizing},
                       {"steiner_points", tg.steiner_points},
+                      {"unseeded_tets", {{"tets", tg.unseeded.tets}, {"groups", tg.unseeded.groups},
+                                         {"volume_mm3", tg.unseeded.volume_mm3}}},
                       {"input_triangles", surface.triangles.size()},
                       {"radius_edge_ratio_bound", bound},
                       {"tets_above_radius_edge_bound", above_tg.above},

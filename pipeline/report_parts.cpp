@@ -148,7 +148,7 @@ std::vector<std::string> released_names(const VolumeRestoration& r, const std::v
 
 std::string released_text(const VolumeRestoration& r, const std::vector<std::string>& names) {
   if (r.released.empty()) return "";
-  std::string o = "; not restorable by offsets (left as they were):";
+  std::string o = "; released (not restorable by offsets, no longer moved):";
   for (const std::string& n : released_names(r, names)) o += " " + n;
   return o;
 }

@@ -76,6 +76,7 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
   r.checks = r.extraction.checks;
   r.quality = r.extracted_quality;
   if (!config.surface.remesh() || !r.extraction.checks.valid()) {
+    r.sharpest_fold_deg = sharpest_fold_deg(r.extraction.surface);
     mesh_volume(r, config, nullptr, progress);
     return r;
   }
@@ -151,8 +152,8 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
   // coarsened and smoothed flat) becomes tets as flat as it; the sliver repair's last resort
   // lifts most. Where tets under 10 degrees remain, the remeshing runs again with the fold guard
   // (RemeshOptions::fold_guard) and that mesh is kept if it has fewer of them (or, as many, a
-  // larger smallest angle). Not always: the guard changes the remeshing's path, and on the phantom,
-  // whose meshes all reach 10 degrees, that alone cost Table 1's smallest angle 6 degrees.
+  // larger smallest angle). Not always: the guard changes the remeshing's path, which can cost a
+  // surface that needed no guard some of Table 1's smallest angle.
   const auto under_10 = [](const SurfaceJobResult& x) {
     return x.volume ? x.volume->quality.total.tets_below_10deg : std::numeric_limits<std::size_t>::max();
   };

@@ -347,7 +347,9 @@ VolumeRestoration restore_volumes(TriSurface& s, const std::map<int, double>& re
       result.stopped_early = true;
       break;
     }
-    for (std::size_t v = 0; v < s.points.size(); ++v) move_left[v] -= (s.points[v] - before[v]).norm();
+    // Not below 0: a move clipped at the bound can measure a rounding error longer than it.
+    for (std::size_t v = 0; v < s.points.size(); ++v)
+      move_left[v] = std::max(0.0, move_left[v] - (s.points[v] - before[v]).norm());
     ++result.rounds;
     result.max_offset_mm = std::max(result.max_offset_mm, largest);
     result.volume_after_mm3 = volumes;

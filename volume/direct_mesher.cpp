@@ -126,7 +126,7 @@ struct GridSizeField {
 constexpr double kIslandMaxScale = 1.25;
 constexpr double kIslandMinDihedralDeg = 10.0;
 // The volume restoration moves a node by at most this many of the largest voxel spacing in all:
-// the labels place a boundary no closer than that, and a tissue thinner than its elements (a
+// the labels fix a boundary only to within a voxel, and a tissue thinner than its elements (a
 // vessel one element across) cannot get its volume back by offsets; larger moves there would
 // only make spikes.
 constexpr double kRestorationMaxMoveOfVoxel = 1.0;
@@ -522,10 +522,12 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
     result.island_fit = fit_component_volumes(mesh, tet_component, targets, params.fit_island_volumes_below_mm3,
                                               kIslandMaxScale, kIslandMinDihedralDeg);
   }
+  std::map<int, double> missed_mm3;  // by tissue id
   for (std::size_t c = 0; c < comps.components.size(); ++c) {
     if (covered[c]) continue;
     const auto& cc = comps.components[c];
     result.missed.push_back({names[cc.tissue_id - 1], cc.voxels, cc.voxels * ids.voxel_volume(), cc.centroid_mm});
+    missed_mm3[cc.tissue_id] += cc.voxels * ids.voxel_volume();
   }
   stage.note(std::to_string(mesh.tets.size()) + " tets, " + std::to_string(mesh.points.size()) + " nodes");
   // Last, so that no later step undoes it: the repairs' flips across interfaces and the smoothing's
@@ -533,9 +535,12 @@ DirectMeshResult mesh_labels_direct(const LabelImage& input, const std::vector<s
   if (params.restore_volumes) {
     if (check_conformity(mesh).conforming()) {
       auto restore = progress.stage("tet volume restoration");
-      std::map<int, double> target;  // tissues with tets; one without is reported as not meshed
+      // Tissues with tets; one without is reported as not meshed. A component left unmeshed is
+      // reported too, and kept out of its tissue's target so that the rest does not grow into it.
+      std::map<int, double> target;
       for (const auto& [id, v] : voxel_volumes(ids))
-        if (std::find(mesh.tissue_ids.begin(), mesh.tissue_ids.end(), id) != mesh.tissue_ids.end()) target[id] = v;
+        if (std::find(mesh.tissue_ids.begin(), mesh.tissue_ids.end(), id) != mesh.tissue_ids.end())
+          target[id] = v - missed_mm3[id];
       result.restoration = restore_tet_volumes(mesh, target, kRestorationMaxMoveOfVoxel * ids.spacing.maxCoeff());
       restore.note(std::to_string(result.restoration->offsets.rounds) + " rounds, " +
                    std::to_string(result.restoration->nodes_moved) + " nodes moved by at most " +

@@ -97,13 +97,7 @@ SurfaceTetgenResult mesh_surface_with_tetgen(const TriSurface& surface,
     }
   }
   result.mesh = std::move(kept.mesh);
-  if (kept.unseeded.tets > 0) {
-    std::ostringstream w;
-    w << kept.unseeded.tets << " tets in " << kept.unseeded.groups << " cells that folds of the surface enclose ("
-      << format_double("%.3g", kept.unseeded.volume_mm3)
-      << " mm^3) were in no region of TetGen's and got the tissue around them";
-    result.warnings.push_back(w.str());
-  }
+  if (kept.unseeded.tets > 0) result.warnings.push_back(unseeded_warning(kept.unseeded));
   result.switches = kept.switches;
   result.steiner_points = kept.steiner_points;
 

@@ -4,6 +4,7 @@
 #include "volume/unseeded_cells.h"
 
 #include "core/face_key.h"
+#include "core/number_format.h"
 
 #include <map>
 #include <unordered_map>
@@ -78,6 +79,13 @@ UnseededCells label_unseeded_cells(const std::vector<Eigen::Vector3d>& points,
   }
   result.groups = counted.size();
   return result;
+}
+
+std::string unseeded_warning(const UnseededCells& u) {
+  if (u.tets == 0) return "";
+  return std::to_string(u.tets) + " tets in " + std::to_string(u.groups) +
+         " cells that folds of the surface enclose (" + format_double("%.3g", u.volume_mm3) +
+         " mm^3) were in no region of TetGen's and got the tissue around them";
 }
 
 }  // namespace tissuemesh

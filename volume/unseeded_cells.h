@@ -17,6 +17,7 @@
 #include "core/tri_surface.h"
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace tissuemesh {
@@ -26,6 +27,9 @@ struct UnseededCells {
   double volume_mm3 = 0.0;    ///< their volume
   std::size_t groups = 0;     ///< face-connected groups of them
 };
+
+/// The warning that names what label_unseeded_cells did ("" when it gave no tet a tissue).
+std::string unseeded_warning(const UnseededCells& u);
 
 /// `ids[t]`: TetGen's region attribute of tet t (0: none); tets of `tets` over `points` (mm) are
 /// positively oriented. Sets ids of unseeded tets as above; the rest stay. Requires the surface's
