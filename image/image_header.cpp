@@ -1,7 +1,8 @@
 // Why: VTK 9.1's readers drop or guess parts of the geometry (vtkNrrdReader keeps only the lengths
 // of `space directions`, treats a fast axis of <= 9 voxels as vector components and flips rows for
-// LAS space; vtkMetaImageReader ignores TransformMatrix), so the headers are parsed here and VTK
-// is trusted with the voxel bytes only.
+// LAS space; vtkMetaImageReader ignores TransformMatrix), so the headers are parsed here; VTK
+// reads the NIfTI and NRRD voxel bytes, and the MetaImage ones are read by read_voxel_bytes
+// (image/voxel_bytes.h) from what this parser found.
 #include "image/image_header.h"
 
 #include "core/errors.h"
@@ -432,10 +433,10 @@ ImageHeader read_nrrd_header(const std::string& path) {
 // ----------------------------------------------------------------------------------- MetaImage
 
 // MetaIO, the format's reference reader (ITK, VTK, 3D Slicer), copies a field's name and text
-// values such as Name, Comment and ObjectSubType into 255-byte buffers without a bound, so a longer
-// one overruns them; such a file is refused rather than passed on in a mesh's provenance. Real headers stay far below: nine full-precision numbers
-// of a TransformMatrix take about 190 characters. ElementDataFile is held in a string and may be
-// longer (a deep path).
+// values such as Name, Comment and ObjectSubType into 255-byte buffers without a bound, so a
+// longer one overruns them; such a file is refused rather than passed on in a mesh's provenance.
+// Real headers stay far below: nine full-precision numbers of a TransformMatrix take about 190
+// characters. ElementDataFile is held in a string and may be longer (a deep path).
 constexpr std::size_t kMetaioMaxText = 254;
 
 void require_metaio_field_size(const Fields& f, const std::string& name, const std::string& value) {
@@ -444,7 +445,8 @@ void require_metaio_field_size(const Fields& f, const std::string& name, const s
   const std::size_t size = start == std::string::npos ? 0 : value.size() - start;
   const auto too_long = [&](const std::string& what, std::size_t length) {
     f.fail("MetaImage field " + what + " is " + std::to_string(length) +
-           " characters long; MetaIO reads at most " + std::to_string(kMetaioMaxText));
+           " characters long; MetaIO-based tools (ITK, VTK, 3D Slicer) read at most " +
+           std::to_string(kMetaioMaxText));
   };
   if (key.size() > kMetaioMaxText) too_long("name '" + key.substr(0, 40) + "...'", key.size());
   if (size > kMetaioMaxText && lower(key) != "elementdatafile") too_long("'" + key + "'", size);

@@ -121,8 +121,9 @@ bool stream_delivers(const std::string& file, std::uintmax_t offset, std::uintma
 }
 
 // The header parsers and require_data_present have settled where the bytes are and that they are
-// all there; what is left is copying them, so VTK's MetaIO, whose own header parser is what the
-// fuzzing kept finding faults in (buffer overruns, unbounded loops), is not needed.
+// all there; what is left is copying them, so MetaIO (vtkMetaImageReader), whose own header
+// parser reads some headers differently from this one and overruns fixed buffers on others, is
+// not in the path (docs/reliability.md).
 std::vector<unsigned char> read_voxel_bytes(const ImageHeader& h, const std::string& path) {
   const std::size_t expected = h.data_bytes();
   const std::uintmax_t size = data_file_size(h.data_file, path);
@@ -171,7 +172,8 @@ std::vector<unsigned char> read_voxel_bytes(const ImageHeader& h, const std::str
 
 // VTK cannot be trusted to notice missing voxel bytes in every case: vtkImageReader (NRRD raw)
 // only warns through the global output window, and MetaIO prints to std::cerr and leaves the
-// missing voxels zero. So completeness is established here, before VTK reads anything.
+// missing voxels zero. So completeness is established here, before the voxels are read (by VTK
+// for NRRD, by read_voxel_bytes for MetaImage).
 void require_data_present(const ImageHeader& h, const std::string& path) {
   std::error_code ec;  // a name the file system refuses (too long, a loop) is a missing file
   if (!std::filesystem::exists(h.data_file, ec)) {

@@ -1,10 +1,11 @@
-// Checks on a label image file's own bytes, made before VTK reads it: VTK 9.1's readers allocate
-// what a header claims, read past short files, leave missing voxels zero with only a warning, and
-// crash on some NIfTI headers they take for Analyze 7.5. What is checked here is what the
-// toolkit's readers (image/image_io.h) rely on.
+// Checks on a label image file's own bytes, made before its voxels are read: VTK 9.1's readers
+// allocate what a header claims, read past short files, leave missing voxels zero with only a
+// warning, and crash on some NIfTI headers they take for Analyze 7.5. What is checked here is what
+// the toolkit's readers (image/image_io.h) rely on; and the MetaImage voxel read that relies on
+// those checks.
 //
 // Every function throws InputError naming the file (`path`, as the user gave it) and what is
-// wrong; nothing is printed. No function reads more than the stream it checks.
+// wrong; nothing is printed. No function reads more than the stream it checks or reads.
 #pragma once
 
 #include "image/image_header.h"

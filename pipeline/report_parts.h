@@ -31,8 +31,8 @@ std::string sliver_repair_text(const SliverRepair& repair);
 nlohmann::json islands_json(const IslandAbsorption& a, const std::vector<std::string>& names);
 std::string islands_text(const IslandAbsorption& a, const std::vector<std::string>& names);
 
-/// Names of the tissues a restoration released (more than 1 % off and not moved by a round), and
-/// the same as a text fragment ("; not restorable by offsets …", empty when none).
+/// Names of the tissues a restoration released (at least 1 % off and brought less than a tenth of
+/// the way by a round), and the same as a text fragment ("; released …", empty when none).
 std::vector<std::string> released_names(const VolumeRestoration& r, const std::vector<std::string>& names);
 std::string released_text(const VolumeRestoration& r, const std::vector<std::string>& names);
 

@@ -50,7 +50,9 @@ struct FoldRerun {
   double sharpest_before_deg = 180.0;  ///< sharpest_fold_deg of the first surface
   double sharpest_after_deg = 180.0;   ///< and of the guarded one
   std::size_t tets_under_10_before = 0, tets_under_10_after = 0;
-  bool kept = false;  ///< the guarded result replaced the first (conforming, fewer tets under 10 deg)
+  /// The guarded result replaced the first: it conforms and has fewer tets under 10 degrees (or as
+  /// many and a larger smallest dihedral angle).
+  bool kept = false;
 };
 
 struct SurfaceJobResult {

@@ -25,12 +25,13 @@
 // candidates from a grid of triangle boxes, surface/triangle_grid.h), so an intersection-free input
 // stays intersection free at any budget. With options.fold_guard, an operation is also refused when
 // two triangles of one patch across an edge would turn from each other by more than 154 degrees
-// (kFoldCos) and by more than the worst such pair among the triangles it replaces. Shape: each vertex carries the input vertices collapsed
-// into it, and a collapse or relaxation move is refused when one of them would end up farther than
-// the approximation bound (max(max_deviation_mm, L/4), times scale_deviation()'s factor) from
-// the triangles around it (an angle- or quality-smoothing move may instead hand it to a
-// neighbour whose triangles are within the bound), or when a changed triangle would leave its
-// patch by more than that bound or face away from it;
+// (kFoldCos) and by more than the worst such pair among the triangles it replaces. Shape: each
+// vertex carries the input vertices collapsed into it, and a collapse or relaxation move is
+// refused when one of them would end up farther than the approximation bound
+// (max(max_deviation_mm, L/4), times scale_deviation()'s factor) from the triangles around it (an
+// angle- or quality-smoothing move may instead hand it to a neighbour whose triangles are within
+// the bound), or when a changed triangle would leave its patch by more than that bound or face
+// away from it;
 // split midpoints and relaxed points that would project onto the far side of a thin sheet are
 // refused too. Size near stuck edges: after grade_stuck_edges(), h(x) = min(L s(x), cap(x)) with
 // the GradedSizeCap (surface/graded_size_cap.h) of the edges between two junction vertices that
@@ -233,7 +234,7 @@ class RemeshComplex {
   /// by at most acos(kFoldCos) = 154 degrees (the split's kSplitFoldCos), or by no more than the
   /// worst such pair among the triangles an operation replaces: the extracted surface has no
   /// wedge under 30 degrees, but coarsening a fold or fin thinner than the edges, and the angle
-  /// smoothing, flattened them to 0.1 degrees, and a tet filling such a wedge is as flat.
+  /// smoothing, can flatten it almost completely, and a tet filling such a wedge is as flat.
   static constexpr double kFoldCos = -0.9;
   /// Smallest cosine between the normals of two triangles of one patch that share an edge: over
   /// the edges of created_ after the operation (against each other and against the live

@@ -2,7 +2,7 @@
 // that every tissue encloses its reference volume (e.g. its voxel volume) again.
 //
 // Remeshing to a vertex budget cuts the convex side of curved sheets and shaves thin parts, so a
-// tissue loses volume (the 21K phantom surface: fgt -1.84 %). With a volume mesher that keeps the
+// tissue loses volume, a few per cent for a thin one. With a volume mesher that keeps the
 // surface (volume/surface_tetgen.h) that loss goes straight into the tet mesh. Each patch k (the
 // triangles between regions p < q, area A_k) moves by a distance d_k along its normal (from p into
 // q): tissue p gains A_k d_k, tissue q loses it (outside, region 0, is free). The d_k are the
@@ -26,7 +26,11 @@
 // the sum of the tissues' relative errors or raises one of them by more than 0.1 % (plus 5 % of
 // that sum). A vertex's move in a round is clipped at its shortest edge (no spikes where few
 // vertices of a patch may move); the next round measures the volumes again and goes on from
-// there. The surface stays valid and keeps its Table 1 minimum angle. Units mm, mm^3.
+// there; a vertex's moves over all rounds add up to at most `max_total_move_mm`. A tissue at least
+// 1 % off that a round (undone) brought less than a tenth of the way, such as a vessel one element
+// across whose moves are clipped, is released: it stops constraining the offsets, its vertices
+// move no more from then on, and the round is solved again for the others (never the last
+// constrained tissue). The surface stays valid and keeps its Table 1 minimum angle. Units mm, mm^3.
 // Deterministic.
 #pragma once
 
@@ -47,8 +51,8 @@ struct VolumeRestoration {
   /// A round was undone (at an eighth of its offsets still invalid, flipped or a smaller angle).
   bool stopped_early = false;
   std::size_t frozen_vertices = 0;          ///< vertices held in place where a round broke the surface
-  /// Tissues released, in order: more than 1 % off, a round could not move them towards their
-  /// reference, so they stopped constraining the offsets and their vertices stopped moving.
+  /// Tissues released, in order: at least 1 % off and brought less than a tenth of the way by a
+  /// round, they stopped constraining the offsets and their vertices moved no more from then on.
   std::vector<int> released;
 };
 
@@ -63,8 +67,8 @@ std::map<int, double> enclosed_volumes(const TriSurface& surface);
 using RestorationCheck = std::function<bool(const TriSurface& moved, std::vector<int>& bad_vertices)>;
 
 /// Moves `surface`'s non-junction vertices as above so that every tissue of `reference_mm3`
-/// (tissue id -> volume, > 0) encloses that volume; rounds stop when every tissue is within
-/// `tolerance_rel` (relative) or after `max_rounds`. No vertex moves further than
+/// (tissue id -> volume, > 0) encloses that volume; rounds stop when every tissue not released is
+/// within `tolerance_rel` (relative) or after `max_rounds`. No vertex moves further than
 /// `max_total_move_mm` over all rounds (the sum of its moves; infinity: no bound). With the default
 /// check, `surface` must be valid and intersection free. Throws InputError for a reference naming
 /// an unknown tissue or not > 0, or a bound not > 0.

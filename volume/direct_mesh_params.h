@@ -63,7 +63,8 @@ struct DirectMeshParams {
   /// Last, the mesh's boundary and interface nodes move by patch offsets so that every tissue's
   /// tets fill its voxel volume (tet_volume_restoration.h): chords of a curved boundary, label
   /// smoothing, coarse elements and the half voxels beyond the border voxels' centres otherwise
-  /// take a few per cent off a tissue.
+  /// take a few per cent off a tissue. Each node moves at most one voxel (the largest spacing) in
+  /// all; skipped, with a warning, on a mesh that does not conform.
   bool restore_volumes = true;
 
   Mesh3Optimisation optimise;           ///< optimisation and sliver repair (mesh3_optimisation.h)

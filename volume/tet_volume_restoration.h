@@ -5,8 +5,10 @@
 //
 // Why after meshing: CGAL Mesh_3 resamples the surface it is given (volume/complex_mesher.h), and
 // the chords of a coarser resampling cut the convex side of every curved sheet and tube, so a
-// restored surface loses volume again in the tets (the 21K phantom at facets about six times the
-// surface edge: fgt -3.6 %). Moving the nodes of the resampled boundary restores it where it is.
+// restored surface loses volume again in the tets; the direct pipeline (volume/direct_mesher.h)
+// loses it to chords, label smoothing and the half voxels beyond the border voxels' centres, and
+// restores it last with each node's total move bounded by one voxel. Moving the nodes of the
+// mesh's own boundary restores the volume where it is.
 //
 // Tets must stay positively oriented and keep their quality: a round whose moves would invert a
 // tet around a moved node, or take its smallest dihedral under 10 degrees (under its own, if it

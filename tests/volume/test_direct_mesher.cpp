@@ -137,7 +137,7 @@ TEST(DirectMesher, TissuesTouchingTheImageBorderEndAtTheBorderVoxelCentres) {
 }
 
 // The volume restoration gives the slabs the half voxels beyond the border voxels' centres back
-// (the slabs' own voxel volumes, 4 x 20 x 16 voxels each; 5-12 % are missing before it), moving
+// (the slabs' own voxel volumes, 4 x 20 x 16 voxels each, several per cent short before it), moving
 // boundary nodes by at most a voxel, with the mesh still conforming and no tet under its dihedral
 // floor. The nodes on the box's edges stay (the surface bends by 90 degrees there), and on an
 // image this small they hold the last few tenths of a per cent.
