@@ -168,15 +168,18 @@ struct Mha {
   bool compress = false;  // zlib stream, as MetaIO writes it
   std::string data_name;  // empty: LOCAL
 };
+// `data` as one zlib stream, as MetaIO writes compressed voxels.
+std::string zlib_stream(const std::string& data) {
+  std::string packed(compressBound(data.size()), '\0');
+  uLongf size = packed.size();
+  const int rc = compress2(reinterpret_cast<Bytef*>(packed.data()), &size,
+                           reinterpret_cast<const Bytef*>(data.data()), data.size(), 6);
+  EXPECT_EQ(rc, Z_OK);
+  return packed.substr(0, size);
+}
+
 void write_mha(const LabelImage& image, const fs::path& path, const Mha& mha, std::string data) {
-  if (mha.compress) {
-    std::string packed(compressBound(data.size()), '\0');
-    uLongf size = packed.size();
-    ASSERT_EQ(compress2(reinterpret_cast<Bytef*>(packed.data()), &size,
-                        reinterpret_cast<const Bytef*>(data.data()), data.size(), 6),
-              Z_OK);
-    data = packed.substr(0, size);
-  }
+  if (mha.compress) data = zlib_stream(data);
   const Eigen::Matrix3d& d = image.direction;
   std::ostringstream h;
   h << "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = "
@@ -506,14 +509,7 @@ TEST(ImageIo, MetaImageVoxelsInEveryLayout) {
                                  (compress ? "_zlib" : "");
         SCOPED_TRACE(name);
         std::string data = other_order ? swapped(c.bytes, c.size) : c.bytes;
-        if (compress) {
-          std::string packed(compressBound(data.size()), '\0');
-          uLongf size = packed.size();
-          ASSERT_EQ(compress2(reinterpret_cast<Bytef*>(packed.data()), &size,
-                              reinterpret_cast<const Bytef*>(data.data()), data.size(), 6),
-                    Z_OK);
-          data = packed.substr(0, size);
-        }
+        if (compress) data = zlib_stream(data);
         std::ostringstream h;
         h << "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = "
           << ((host_is_big_endian() != other_order) ? "True" : "False")
