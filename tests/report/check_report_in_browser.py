@@ -19,6 +19,7 @@ import math
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -39,13 +40,30 @@ def chromium():
     sys.exit(77)
 
 
-def run_chromium(args, url, profile):
+def run_chromium(args, url, profile, attempts=2, timeout=150):
+    """Runs headless Chromium on url; returns its CompletedProcess. Headless Chromium can hang for
+    good on a loaded machine (seen with --screenshot and a virtual time budget: minutes with no
+    output, where the same page takes seconds): such a run is killed with its process group and
+    run again, `attempts` times in all, each in a fresh profile; a page that never finishes then
+    fails the test."""
     cmd = [chromium(), "--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--hide-scrollbars",
            "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--ignore-gpu-blocklist",
            "--no-first-run", "--disable-extensions", "--enable-logging=stderr", "--v=0",
-           f"--user-data-dir={profile}", f"--window-size={WIDTH},{HEIGHT}",
+           f"--window-size={WIDTH},{HEIGHT}",
            "--virtual-time-budget=20000", "--run-all-compositor-stages-before-draw"] + args + [url]
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=240)
+    for attempt in range(1, attempts + 1):
+        run_profile = os.path.join(profile, f"attempt{attempt}")
+        proc = subprocess.Popen(cmd[:1] + [f"--user-data-dir={run_profile}"] + cmd[1:], stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True, start_new_session=True)
+        try:
+            out, err = proc.communicate(timeout=timeout)
+            return subprocess.CompletedProcess(proc.args, proc.returncode, out, err)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.communicate()
+            print(f"chromium {' '.join(args)}: no result after {timeout} s (attempt {attempt} of {attempts}), killed")
+    print(f"chromium never finished the page in {attempts} attempts")
+    sys.exit(1)
 
 
 def unit(rgb):
