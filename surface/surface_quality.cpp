@@ -2,10 +2,13 @@
 
 #include "surface/triangle_geometry.h"
 
+#include "core/face_key.h"
+
 #include <algorithm>
-#include <array>
-#include <vector>
 #include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace tissuemesh {
 
@@ -39,20 +42,12 @@ SurfaceQuality surface_quality(const TriSurface& s) {
 }
 
 double sharpest_fold_deg(const TriSurface& s) {
-  struct EdgeUse {
-    std::array<int, 2> key;
-    int triangle;
-  };
-  std::vector<EdgeUse> uses;
+  std::vector<std::pair<std::uint64_t, int>> uses;  // (edge_key, triangle), sorted: an edge's uses in a row
   uses.reserve(3 * s.triangles.size());
   for (std::size_t t = 0; t < s.triangles.size(); ++t)
-    for (int e = 0; e < 3; ++e) {
-      const int a = s.triangles[t][e], b = s.triangles[t][(e + 1) % 3];
-      uses.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t)});
-    }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return x.key < y.key || (x.key == y.key && x.triangle < y.triangle);
-  });
+    for (int e = 0; e < 3; ++e)
+      uses.emplace_back(edge_key(s.triangles[t][e], s.triangles[t][(e + 1) % 3]), static_cast<int>(t));
+  std::sort(uses.begin(), uses.end());
   auto normal = [&](int t) {
     const auto& w = s.triangles[t];
     return area_vector(s.points[w[0]], s.points[w[1]], s.points[w[2]]);
@@ -60,8 +55,8 @@ double sharpest_fold_deg(const TriSurface& s) {
   double sharpest = 180.0;
   for (std::size_t i = 0; i < uses.size();) {
     std::size_t j = i;
-    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-    const int a = uses[i].triangle, b = j - i == 2 ? uses[i + 1].triangle : -1;
+    while (j < uses.size() && uses[j].first == uses[i].first) ++j;
+    const int a = uses[i].second, b = j - i == 2 ? uses[i + 1].second : -1;
     if (b >= 0 && s.labels[a] == s.labels[b]) {
       const Eigen::Vector3d na = normal(a), nb = normal(b);
       if (na.norm() > 0.0 && nb.norm() > 0.0) {

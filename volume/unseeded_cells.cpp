@@ -5,6 +5,7 @@
 
 #include "core/face_key.h"
 #include "core/number_format.h"
+#include "core/union_find.h"
 
 #include <map>
 #include <unordered_map>
@@ -33,13 +34,8 @@ UnseededCells label_unseeded_cells(const std::vector<Eigen::Vector3d>& points,
       const std::uint64_t key = face_key(k[(q + 1) % 4], k[(q + 2) % 4], k[(q + 3) % 4]);
       if (!triangle_of.count(key)) inner_faces[key].push_back(t);
     }
-  std::map<int, int> group_of;  // tet -> group root, in tet order
-  std::vector<int> parent(tets.size(), -1);
-  auto root = [&](int t) {
-    while (parent[t] != t) t = parent[t] = parent[parent[t]];
-    return t;
-  };
-  for (int t : unseeded) parent[t] = t;
+  std::vector<int> parent = singleton_sets(tets.size());
+  auto root = [&](int t) { return find_root(parent, t); };
   for (const auto& [key, members] : inner_faces)
     for (std::size_t m = 1; m < members.size(); ++m) {
       const int a = root(members[0]), b = root(members[m]);
