@@ -391,8 +391,7 @@ LabelImage read_metaimage(const std::string& path) {
   ImageHeader h = read_metaimage_header(path);
   require_label_voxels(h.type, h.components, path);
   require_read_memory(h.geometry.dims, voxel_type_bytes(h.type), path);
-  require_data_present(h, path);
-  const std::vector<unsigned char> bytes = read_voxel_bytes(h, path);
+  const std::vector<unsigned char> bytes = read_voxel_bytes(h, path);  // with the presence checks
   const auto labels = [&](auto type_tag) {
     using T = decltype(type_tag);
     copy_labels(reinterpret_cast<const T*>(bytes.data()), false, h.geometry, path);

@@ -101,14 +101,47 @@ std::int64_t inflate_stream(const std::string& file, std::uintmax_t offset, std:
   return total;
 }
 
-// Where the voxel data start in the header's data file of `size` bytes (HeaderSize = -1: the
-// data are its last `length` bytes), or -1 when that cannot be known (compressed data of
-// unknown length).
-std::int64_t data_start(const ImageHeader& h, std::uintmax_t size, std::uintmax_t length,
-                        bool length_known) {
-  if (h.data_offset >= 0) return h.data_offset;
-  if (!length_known) return -1;
-  return static_cast<std::int64_t>(size - std::min(size, length));
+// Where a header's voxel bytes lie in its data file: from `start`, `length` bytes (raw data, or
+// MetaImage's CompressedDataSize), or, for a compressed stream of unknown length, to the end of
+// the file. Requires the data file to exist and to hold them (InputError otherwise); a compressed
+// stream's contents are checked by whoever inflates it.
+struct DataSpan {
+  std::uintmax_t start = 0;
+  std::uintmax_t length = 0;  ///< bytes from start: the declared length, or the rest of the file
+};
+
+DataSpan present_data_span(const ImageHeader& h, const std::string& path) {
+  std::error_code ec;  // a name the file system refuses (too long, a loop) is a missing file
+  if (!std::filesystem::exists(h.data_file, ec)) {
+    throw InputError(path + ": voxel data file " + h.data_file + " does not exist" +
+                     (ec ? " (" + ec.message() + ")" : ""));
+  }
+  const std::uintmax_t size = data_file_size(h.data_file, path);
+  const bool length_known = !h.compressed || h.compressed_size >= 0;
+  const std::uintmax_t length =
+      h.compressed ? static_cast<std::uintmax_t>(std::max<std::int64_t>(h.compressed_size, 0))
+                   : h.data_bytes();
+  DataSpan span;
+  if (h.data_offset >= 0) {
+    span.start = static_cast<std::uintmax_t>(h.data_offset);
+  } else if (length_known) {
+    span.start = size - std::min(size, length);  // HeaderSize = -1: the data are the last bytes
+  } else {
+    throw InputError(path + ": HeaderSize = -1 needs CompressedDataSize for compressed data");
+  }
+  const std::uintmax_t available = size - std::min(size, span.start);
+  if (length_known && available < length) {
+    throw InputError(path + ": voxel data is truncated: " + h.data_file + " holds " +
+                     std::to_string(available) + " bytes of voxel data, " + std::to_string(length) +
+                     " expected");
+  }
+  span.length = length_known ? length : available;
+  return span;
+}
+
+InputError corrupt_stream(const ImageHeader& h, const std::string& path) {
+  return InputError(path + ": compressed voxel data is truncated or corrupt (it does not " +
+                    "inflate to the " + std::to_string(h.data_bytes()) + " bytes expected)");
 }
 
 }  // namespace
@@ -120,39 +153,29 @@ bool stream_delivers(const std::string& file, std::uintmax_t offset, std::uintma
   return total >= 0 && static_cast<std::uint64_t>(total) >= expected;
 }
 
-// The header parsers and require_data_present have settled where the bytes are and that they are
-// all there; what is left is copying them, so MetaIO (vtkMetaImageReader), whose own header
+// The header parsers have settled where the bytes are, and present_data_span that they are there;
+// what is left is copying them, so MetaIO (vtkMetaImageReader), whose own header
 // parser reads some headers differently from this one and overruns fixed buffers on others, is
 // not in the path (docs/reliability.md).
 std::vector<unsigned char> read_voxel_bytes(const ImageHeader& h, const std::string& path) {
+  const DataSpan span = present_data_span(h, path);
   const std::size_t expected = h.data_bytes();
-  const std::uintmax_t size = data_file_size(h.data_file, path);
-  const bool length_known = !h.compressed || h.compressed_size >= 0;
-  const std::uintmax_t length =
-      h.compressed ? static_cast<std::uintmax_t>(std::max<std::int64_t>(h.compressed_size, 0))
-                   : expected;
-  const std::int64_t start = data_start(h, size, length, length_known);
-  const auto changed = [&] {
-    return InputError(path + ": voxel data file " + h.data_file +
-                      " no longer holds the voxel data it held when checked");
-  };
-  if (start < 0) throw changed();
   std::vector<unsigned char> bytes;
-  bytes.reserve(expected);
   if (h.compressed) {
-    const std::uintmax_t available = size - std::min<std::uintmax_t>(size, start);
-    const std::int64_t total = inflate_stream(
-        h.data_file, start, length_known ? length : available,
-        [&](const unsigned char* data, std::size_t n) {
+    bytes.reserve(expected);
+    const std::int64_t total =
+        inflate_stream(h.data_file, span.start, span.length, [&](const unsigned char* data, std::size_t n) {
           bytes.insert(bytes.end(), data, data + std::min(n, expected - bytes.size()));
         });
-    if (total < 0 || bytes.size() != expected) throw changed();
+    if (total < 0 || bytes.size() != expected) throw corrupt_stream(h, path);
   } else {
     std::ifstream in(h.data_file, std::ios::binary);
-    in.seekg(start);
+    in.seekg(static_cast<std::streamoff>(span.start));
     bytes.resize(expected);
     in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(expected));
-    if (!in || static_cast<std::size_t>(in.gcount()) != expected) throw changed();
+    if (!in || static_cast<std::size_t>(in.gcount()) != expected) {
+      throw InputError(path + ": voxel data file " + h.data_file + " could not be read to its end");
+    }
   }
   const std::size_t value = voxel_type_bytes(h.type);
   const bool host_big_endian = [] {
@@ -175,33 +198,9 @@ std::vector<unsigned char> read_voxel_bytes(const ImageHeader& h, const std::str
 // missing voxels zero. So completeness is established here, before the voxels are read (by VTK
 // for NRRD, by read_voxel_bytes for MetaImage).
 void require_data_present(const ImageHeader& h, const std::string& path) {
-  std::error_code ec;  // a name the file system refuses (too long, a loop) is a missing file
-  if (!std::filesystem::exists(h.data_file, ec)) {
-    throw InputError(path + ": voxel data file " + h.data_file + " does not exist" +
-                     (ec ? " (" + ec.message() + ")" : ""));
-  }
-  const std::uintmax_t size = data_file_size(h.data_file, path);
-  // Bytes the data occupies on disk: known for raw data and from MetaImage's CompressedDataSize;
-  // otherwise the compressed stream runs to the end of the file.
-  const bool length_known = !h.compressed || h.compressed_size >= 0;
-  const std::uintmax_t length =
-      h.compressed ? static_cast<std::uintmax_t>(std::max<std::int64_t>(h.compressed_size, 0))
-                   : h.data_bytes();
-  const std::int64_t start = data_start(h, size, length, length_known);
-  if (start < 0) {
-    throw InputError(path + ": HeaderSize = -1 needs CompressedDataSize for compressed data");
-  }
-  const auto offset = static_cast<std::uintmax_t>(start);
-  const std::uintmax_t available = size - std::min(size, offset);
-  if (length_known && available < length) {
-    throw InputError(path + ": voxel data is truncated: " + h.data_file + " holds " +
-                     std::to_string(available) + " bytes of voxel data, " + std::to_string(length) +
-                     " expected");
-  }
-  if (h.compressed &&
-      !stream_delivers(h.data_file, offset, length_known ? length : available, h.data_bytes())) {
-    throw InputError(path + ": compressed voxel data is truncated or corrupt (it does not " +
-                     "inflate to the " + std::to_string(h.data_bytes()) + " bytes expected)");
+  const DataSpan span = present_data_span(h, path);
+  if (h.compressed && !stream_delivers(h.data_file, span.start, span.length, h.data_bytes())) {
+    throw corrupt_stream(h, path);
   }
 }
 

@@ -26,10 +26,10 @@ std::uintmax_t data_file_size(const std::string& file, const std::string& path);
 bool stream_delivers(const std::string& file, std::uintmax_t offset, std::uintmax_t length,
                      std::size_t expected);
 
-/// The `header.data_bytes()` voxel bytes of a MetaImage or NRRD header whose data
-/// require_data_present has accepted: read raw or inflated (zlib or gzip) from `header.data_file`
-/// at its offset, multi-byte values put in this machine's byte order. Throws InputError naming
-/// `path` when the file changed since the check and no longer delivers them.
+/// The `header.data_bytes()` voxel bytes of a MetaImage or NRRD header, read raw or inflated (zlib
+/// or gzip, in one pass) from `header.data_file` at its offset, multi-byte values put in this
+/// machine's byte order. Makes require_data_present's checks on the way, with its messages, so it
+/// is called instead of it; throws InputError naming `path`.
 std::vector<unsigned char> read_voxel_bytes(const ImageHeader& header, const std::string& path);
 
 /// Requires the voxel bytes an NRRD or MetaImage header (image/image_header.h) promises: the data
