@@ -90,6 +90,7 @@ SurfaceJobResult run_surface_job(const LabelImage& labels, const std::string& im
   options.target_vertices = config.surface.target_vertices;
   options.target_edge_mm = config.surface.target_edge_mm;
   options.iterations = config.surface.remesh_iterations;
+  options.mean_quality_passes = config.surface.mean_quality_passes;
   options.max_deviation_mm = 0.5 * ids.spacing.norm();  // half a voxel diagonal
   if (config.approach.enabled) {
     r.approach.emplace(r.extraction.surface, config.approach);

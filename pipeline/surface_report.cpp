@@ -136,6 +136,7 @@ nlohmann::json surface_job_json(const SurfaceJobResult& r) {
                    {"flips", r.remesh->flips},
                    {"angle_smoothing_moves", r.remesh->angle_moves},
                    {"quality_smoothing_moves", r.remesh->quality_moves},
+                   {"mean_quality_smoothing_moves", r.remesh->mean_quality_moves},
                    {"sweeps_on_two_threads", r.remesh->partitioned_sweeps},
                    {"thickness_edge_ratio", r.thickness_edge_ratio},
                    {"thickness_scale", r.remesh->thickness_scale}};
@@ -250,6 +251,7 @@ std::string surface_job_text(const SurfaceJobResult& r) {
       << " mm where the size field is 1 (" << r.remesh->splits << " splits, " << r.remesh->collapses
       << " collapses, " << r.remesh->flips << " flips, " << r.remesh->angle_moves << " angle-smoothing moves";
     if (r.remesh->quality_moves > 0) o << ", " << r.remesh->quality_moves << " quality-smoothing moves";
+    if (r.remesh->mean_quality_moves > 0) o << ", " << r.remesh->mean_quality_moves << " mean-quality moves";
     o << "; " << r.remesh->partitioned_sweeps << " collapse and relaxation sweeps in two halves on two threads)\n";
     if (r.thickness_edge_ratio > 0.0) {
       if (r.remesh->thickness_scale == 0.0)

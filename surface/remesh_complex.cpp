@@ -364,14 +364,16 @@ double RemeshComplex::ring_min_angle(int v, const Vector3d& p) const {
 }
 
 RemeshComplex::RingShape RemeshComplex::ring_shape(int v, const Vector3d& p, double poor_angle_rad) const {
-  RingShape r{INFINITY, INFINITY, 0};
+  RingShape r{INFINITY, INFINITY, 0, 0.0};
   for (int t : vt_[v]) {
     const NewTriangle q = moved_triangle(t, v, p, v);
     for (double a : triangle_angles(q.p[0], q.p[1], q.p[2])) {
       r.min_angle = std::min(r.min_angle, a);
       r.poor_angles += a < poor_angle_rad;
     }
-    r.min_quality = std::min(r.min_quality, triangle_quality(q.p[0], q.p[1], q.p[2]));
+    const double quality = triangle_quality(q.p[0], q.p[1], q.p[2]);
+    r.min_quality = std::min(r.min_quality, quality);
+    r.quality_sum += quality;
   }
   return r;
 }

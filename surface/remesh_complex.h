@@ -128,6 +128,17 @@ class RemeshComplex {
   /// of angles under `min_angle_rad` never grows, and its smallest angle never drops below
   /// min(its current value, `min_angle_rad`). Appends the vertices it moved to `moved`.
   void smooth_low_quality(double q_below, double min_angle_rad, std::vector<int>& moved);
+  /// Mean-quality smoothing of the surface vertices of triangles whose quality is under
+  /// `q_below`: the same pattern search for the position with the largest sum of the qualities of
+  /// the vertex's triangles, among positions that keep their smallest angle at least min(its
+  /// current one, `angle_floor_rad`), do not raise their count of angles under `min_angle_rad`,
+  /// and keep their smallest quality at least min(its current one, `q_floor`); the vertex moves
+  /// there if that raises the sum and try_move's guards allow it. So the surface's count of angles
+  /// under `min_angle_rad` never grows, its smallest angle never drops below min(its value,
+  /// `angle_floor_rad`) nor its Q_min below min(its value, `q_floor`), while the mean quality (and
+  /// with it the mean smallest angle) rises. Appends the vertices it moved to `moved`.
+  void smooth_mean_quality(double q_below, double min_angle_rad, double angle_floor_rad, double q_floor,
+                           std::vector<int>& moved);
   /// Tries the flip of every edge of the triangles around `vertices` (after they moved: only those
   /// triangles' angles changed, so only their edges can have become flippable); returns the flips.
   std::size_t flip_around(const std::vector<int>& vertices);
@@ -304,14 +315,22 @@ class RemeshComplex {
   /// that score in `best_score`. False when v has no normal (nothing searched).
   template <class Score>
   bool search_on_patch(int v, double step, Score score, Vector3d& best, double& best_score) const;
+  /// The vertex loop of smooth_low_quality and smooth_mean_quality: every surface vertex of a
+  /// triangle with a quality under `q_below`, in index order, searched over its patch
+  /// (search_on_patch) for the largest objective(now, there) (now: its RingShape where it is,
+  /// there: at the point tried; a negative value refuses the point), and moved there when that
+  /// beats objective(now, now) and try_move (with hand-over) allows it; appended to `moved`.
+  template <class Objective>
+  void search_low_quality_vertices(double q_below, double min_angle_rad, Objective objective, std::vector<int>& moved);
   /// Smallest angle of v's triangles with v at p (radians).
   double ring_min_angle(int v, const Vector3d& p) const;
-  /// v's triangles with v at p: smallest angle (radians), smallest Frey-Borouchaki quality, and
-  /// how many of their angles are under `poor_angle_rad`.
+  /// v's triangles with v at p: smallest angle (radians), smallest and summed Frey-Borouchaki
+  /// quality, and how many of their angles are under `poor_angle_rad`.
   struct RingShape {
     double min_angle;
     double min_quality;
     int poor_angles;
+    double quality_sum;
   };
   RingShape ring_shape(int v, const Vector3d& p, double poor_angle_rad) const;
   /// Live triangles (a, b, c) for which bad(a, b, c) holds, in index order.

@@ -337,7 +337,9 @@ bool RemeshComplex::search_min_angle(int v, const std::vector<int>& nb) {
   return best_angle > before && try_move(v, best, true);
 }
 
-void RemeshComplex::smooth_low_quality(double q_below, double min_angle_rad, std::vector<int>& moved_vertices) {
+template <class Objective>
+void RemeshComplex::search_low_quality_vertices(double q_below, double min_angle_rad, Objective objective,
+                                                std::vector<int>& moved_vertices) {
   rebuild_grid();
   const std::vector<char> todo = vertices_of(triangles_where(
       [&](const Vector3d& a, const Vector3d& b, const Vector3d& c) { return triangle_quality(a, b, c) < q_below; }));
@@ -346,20 +348,37 @@ void RemeshComplex::smooth_low_quality(double q_below, double min_angle_rad, std
     if (!todo[v] || !vertex_alive_[v] || kind_[v] != Kind::Surface) continue;
     neighbours(v, nb);
     const RingShape now = ring_shape(v, x_[v], min_angle_rad);
-    const double angle_floor = std::min(now.min_angle, min_angle_rad);
-    auto quality = [&](const Vector3d& p) {
-      const RingShape there = ring_shape(v, p, min_angle_rad);
-      return there.min_angle >= angle_floor && there.poor_angles <= now.poor_angles
-                 ? there.min_quality
-                 : -1.0;  // below any quality: never chosen
-    };
-    const double before = now.min_quality;
+    auto score = [&](const Vector3d& p) { return objective(now, ring_shape(v, p, min_angle_rad)); };
     Vector3d best;
-    double best_quality;
-    if (search_on_patch(v, first_search_step(x_, v, nb), quality, best, best_quality) && best_quality > before &&
-        try_move(v, best, true))
+    double best_score;
+    if (search_on_patch(v, first_search_step(x_, v, nb), score, best, best_score) &&
+        best_score > objective(now, now) && try_move(v, best, true))
       moved_vertices.push_back(v);
   }
+}
+
+void RemeshComplex::smooth_low_quality(double q_below, double min_angle_rad, std::vector<int>& moved_vertices) {
+  search_low_quality_vertices(
+      q_below, min_angle_rad,
+      [&](const RingShape& now, const RingShape& there) {
+        return there.min_angle >= std::min(now.min_angle, min_angle_rad) && there.poor_angles <= now.poor_angles
+                   ? there.min_quality
+                   : -1.0;  // below any quality: never chosen
+      },
+      moved_vertices);
+}
+
+void RemeshComplex::smooth_mean_quality(double q_below, double min_angle_rad, double angle_floor_rad, double q_floor,
+                                        std::vector<int>& moved_vertices) {
+  search_low_quality_vertices(
+      q_below, min_angle_rad,
+      [&](const RingShape& now, const RingShape& there) {
+        return there.min_angle >= std::min(now.min_angle, angle_floor_rad) && there.poor_angles <= now.poor_angles &&
+                       there.min_quality >= std::min(now.min_quality, q_floor)
+                   ? there.quality_sum
+                   : -1.0;  // below any sum: never chosen
+      },
+      moved_vertices);
 }
 
 std::size_t RemeshComplex::cap_poor_triangles(double min_angle_rad) {

@@ -32,6 +32,10 @@ SurfaceParams SurfaceParams::from_yaml(YamlMap& m) {
   if (!(p.thickness_edge_ratio >= 0.0 && p.thickness_edge_ratio <= 10.0))
     throw InputError(m.where("thickness_edge_ratio") + ": must be in [0, 10] (edge length per mm of local thickness; 0 = off), got " +
                      std::to_string(p.thickness_edge_ratio));
+  p.mean_quality_passes = m.integer("mean_quality_passes", p.mean_quality_passes);
+  if (p.mean_quality_passes < 0 || p.mean_quality_passes > 20)
+    throw InputError(m.where("mean_quality_passes") + ": must be in 0..20 (0 = none), got " +
+                     std::to_string(p.mean_quality_passes));
   m.finish();
   return p;
 }
@@ -45,6 +49,7 @@ void SurfaceParams::to_yaml(YAML::Emitter& out) const {
   out << YAML::Key << "remesh_iterations" << YAML::Value << remesh_iterations;
   out << YAML::Key << "restore_volumes" << YAML::Value << restore_volumes;
   out << YAML::Key << "thickness_edge_ratio" << YAML::Value << thickness_edge_ratio;
+  out << YAML::Key << "mean_quality_passes" << YAML::Value << mean_quality_passes;
   out << YAML::EndMap;
 }
 

@@ -9,6 +9,7 @@
 //     remesh_iterations: 10       # split/collapse/flip/relax rounds (surface/surface_remesh.h)
 //     restore_volumes: false      # offset the remeshed patches so every tissue has its voxel volume
 //     thickness_edge_ratio: 1     # edges at most this times the local thickness of thin parts (0 = off)
+//     mean_quality_passes: 0      # passes raising the mean triangle quality at the end (0 = none)
 #pragma once
 
 #include "core/yaml_map.h"
@@ -30,6 +31,9 @@ struct SurfaceParams {
   /// where that is under the edge length, coarsened as a whole when the thin parts would take more
   /// than half the vertex budget (surface/thickness_size.h, surface/surface_remesh.h); 0 = off.
   double thickness_edge_ratio = 1.0;
+  /// Passes of the mean-quality smoothing that ends the remeshing (RemeshOptions::
+  /// mean_quality_passes, surface/surface_remesh.h); 0 = none.
+  int mean_quality_passes = 0;
 
   bool remesh() const { return target_vertices > 0 || target_edge_mm > 0.0; }
 

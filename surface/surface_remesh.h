@@ -12,7 +12,9 @@
 // degrees, repeated on what a kept one left, at most RemeshOptions::repair_attempts attempts,
 // each with the approximation bound 1.5 times looser near those triangles), and a last
 // quality-raising smoothing when Q_min is under kQualitySmoothingBelow (it never lowers the
-// smallest angle below min(its value, 30 degrees) nor adds angles under 30 degrees). Near
+// smallest angle below min(its value, 30 degrees) nor adds angles under 30 degrees), and, when
+// RemeshOptions::mean_quality_passes asks for it, a mean-quality smoothing that raises Q_av and
+// the mean smallest angle under the same rules (Q_min kept at min(its value, 0.6)). Near
 // junction edges that stay far shorter than h, h is capped (surface/graded_size_cap.h). An
 // absolute bound from the local thickness (RemeshOptions::max_edge_mm) keeps thin sheets and
 // tubes at edges that fit them; when those would take more than half the budget, all of them are
@@ -43,6 +45,13 @@ namespace tissuemesh {
 /// (Alqaoud et al., Table 1), which an obtuse isosceles triangle reaches at an apex of about
 /// 117.3 degrees.
 constexpr double kQualitySmoothingBelow = 0.486;
+/// The mean-quality smoothing (RemeshOptions::mean_quality_passes) moves the vertices of triangles
+/// with a quality under this (an isosceles triangle with an apex of 46 or 70 degrees); the nearly
+/// equilateral rest gain little.
+constexpr double kMeanQualitySmoothingBelow = 0.9;
+/// Nor does that smoothing take a triangle's quality below this (an isosceles apex of about 103
+/// degrees), or below what it was when that was less: Q_min never drops.
+constexpr double kMeanQualityFloor = 0.6;
 
 struct RemeshOptions {
   int target_vertices = 0;      ///< total vertex budget (> 0), or 0 to use target_edge_mm
@@ -66,6 +75,13 @@ struct RemeshOptions {
   /// (RemeshComplex::kFoldCos) further than their neighbourhood already was: a volume mesher that
   /// keeps the surface (TetGen -Y) must fill the wedge between them with tets at least as flat.
   bool fold_guard = false;
+  /// Passes of the mean-quality smoothing (RemeshComplex::smooth_mean_quality), last of all, over
+  /// the vertices of triangles with a quality under kMeanQualitySmoothingBelow: they raise Q_av
+  /// and the mean smallest angle of Table 1 and never lower Q_min, the smallest angle (below 30
+  /// degrees) nor add angles under 30 degrees. They move vertices within the approximation bound,
+  /// away from where the input is most curved, so the surface may end farther from the input (its
+  /// Hausdorff distance grows). 0 = none. Each pass visits most vertices.
+  int mean_quality_passes = 0;
   /// Threads of the partitioned sweeps (surface/remesh_complex.h): 2, or 1 to run the two halves
   /// one after the other. The result is the same either way.
   int threads = 2;
@@ -81,6 +97,7 @@ struct RemeshResult {
   std::size_t splits = 0, collapses = 0, flips = 0;
   std::size_t angle_moves = 0;  ///< vertex moves of the angle-improving smoothing (a kept repair's included)
   std::size_t quality_moves = 0;  ///< vertex moves of the final quality-raising smoothing
+  std::size_t mean_quality_moves = 0;  ///< vertex moves of the mean-quality smoothing
   std::size_t partitioned_sweeps = 0;  ///< collapse and relaxation sweeps run as two halves (the others: none was large enough)
 };
 

@@ -525,7 +525,7 @@ TEST(ImageIo, MetaImageVoxelsInEveryLayout) {
                    h.str() + "\nHeaderSize = 37\nElementDataFile = " + name + ".raw\n");
         write_file(dir / (name + "_last.mhd"),
                    h.str() + "\nHeaderSize = -1\nElementDataFile = " + name + ".raw\n");
-        for (const std::string file : {name + ".mha", name + ".mhd", name + "_last.mhd"}) {
+        for (const std::string& file : {name + ".mha", name + ".mhd", name + "_last.mhd"}) {
           SCOPED_TRACE(file);
           const LabelImage image = read_label_image((dir / file).string());
           EXPECT_EQ(image.labels, volume.labels);

@@ -61,6 +61,8 @@ TEST(MeshConfig, ErrorsNameFileKeyAndValue) {
             std::string::npos);
   EXPECT_NE(error_of(tissues + "phantom: {tumor_diameter_mm: -1}").find("tumor_diameter_mm"), std::string::npos);
   EXPECT_NE(error_of(tissues + "phantom: {sede: 3}").find("phantom.sede"), std::string::npos);
+  EXPECT_NE(error_of(tissues + "surface: {mean_quality_passes: 21}").find("surface.mean_quality_passes: must be in 0..20"),
+            std::string::npos);
   EXPECT_NE(error_of("pipeline: direct").find("tissues"), std::string::npos);
 }
 
