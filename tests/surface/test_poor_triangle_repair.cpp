@@ -50,8 +50,8 @@ TEST(SurfaceRemesh, RepairAroundPoorTrianglesIsKeptOnlyWhenItIsBetter) {
   // budgets. Each result is compared with the same remeshing without the repair (the polished
   // surface): a kept repair is no worse in smallest angle and Q_min and better in one of them or
   // P30 (improves_table1_minima); a discarded one returns the polished surface bit for bit, with
-  // its counters. Measured when written: kept at 80, 110 and 120; discarded at 100 and 130 (the
-  // repair's smallest angle was lower: 19.02 against 19.03 and 26.48 against 29.90 degrees).
+  // its counters. Measured last: kept at 80, 110, 120 and 130; discarded at 100 (the repair's
+  // smallest angle was lower: 19.02 against 19.03 degrees).
   const LabelImage img = island_under_layer();
   const TriSurface input = extract(img, 3).surface;
   const SurfaceProjection on_input(input);
