@@ -38,9 +38,8 @@ constexpr int kAngleSmoothingPasses = 40;
 /// the second round on: the first coarsens the fine extraction and leaves nothing converged.
 constexpr double kStuckBelow = 0.5;
 /// The mean-quality smoothing keeps every angle it changes at this or more (or no lower than the
-/// smallest angle around the vertex, when that is less): at 30 degrees it left many angles at exactly 30, which the volume restoration's offsets
-/// (up to half a voxel) then turned under 30 (folded layers, seed 2: 13 angles under 30 instead of
-/// 5; with 32 degrees 4, and the same averages).
+/// smallest angle around the vertex, when that is less): with 30 degrees it leaves many angles at
+/// exactly 30, which the volume restoration's offsets (up to half a voxel) then turn under 30.
 constexpr double kMeanSmoothingAngleDeg = 32.0;
 /// Rounds of the repair around poor triangles (remesh_surface): more rounds did not raise the
 /// smallest angle on the phantom at budgets around the shipped ones, and lowered Q_min.
@@ -289,9 +288,8 @@ RemeshResult remesh_surface(const TriSurface& input, const SurfaceProjection& pr
   // (each aimed at a minimum) leave triangles below their best shape, most of all on surfaces
   // folded at about the edge length, whose crests hold vertices of three or four triangles. A
   // triangle it changes keeps a quality of at least kMeanQualityFloor, or what it had when that
-  // was less: with the surface's Q_min as the floor instead, the sum traded the worst triangles
-  // down to it (the folded-layers phantom ended at a lower Q_min; with 0.5 or 0.6 it rose, with
-  // the same averages).
+  // was less: with the surface's Q_min as the floor instead, the sum trades the worst triangles
+  // down to it (docs/surface-pipeline.md, "Mean-quality smoothing").
   std::size_t mean_moves = 0;
   if (options.mean_quality_passes > 0) {
     const SurfaceQuality before = surface_quality(result);
